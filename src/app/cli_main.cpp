@@ -1,0 +1,61 @@
+// neurocloth-cli: batch access to the simulation core (simulate, relax, bench).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "commands.h"
+#include "input_error.h"
+
+int main(int argc, char** argv) {
+  using namespace neurocloth;
+  CLI::App app{"neurocloth-cli: the neuro-fuzzy cloth network from the command line"};
+  app.require_subcommand(1);
+
+  SimulateOptions sim;
+  auto* simulate =
+      app.add_subcommand("simulate", "Run a scene forward in time and write RESULT.json");
+  simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required();
+  simulate->add_option("--seconds", sim.seconds, "Simulated seconds (0 writes the initial state)")
+      ->required();
+  simulate->add_option("--integrator", sim.integrator,
+                       "network | explicit_euler | verlet | rk4 | implicit_euler");
+  simulate->add_option("--dt", sim.dt, "Time step (the refresh interval when adaptive), s");
+  auto* adaptive =
+      simulate->add_flag("--adaptive", sim.adaptive, "Adaptive propagation (paper, Table 1)");
+  auto* fixed = simulate->add_flag("--fixed-step", sim.fixed_step, "Fixed time step");
+  adaptive->excludes(fixed);
+  simulate->add_option("--out", sim.out, "Where to write RESULT.json")->required();
+
+  RelaxOptions rel;
+  auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");
+  relax->add_option("scene", rel.scene, "Scene file (JSON)")->required();
+  relax->add_option("--out", rel.out, "Where to write RESULT.json")->required();
+
+  BenchOptions bench;
+  auto* bench_cmd = app.add_subcommand("bench", "Time the network step on an N x N cloth");
+  bench_cmd->add_option("--size", bench.size, "N (cloth is N x N)");
+  bench_cmd->add_option("--steps", bench.steps, "Steps per timed run");
+  bench_cmd->add_option("--repeat", bench.repeat, "Timed runs; the median is reported");
+  bench_cmd->add_option("--integrator", bench.integrator, "Integrator to time");
+  bench_cmd->add_flag("--json", bench.json, "Print JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+  try {
+    if (*simulate) return run_simulate(sim);
+    if (*relax) return run_relax(rel);
+    if (*bench_cmd) return run_bench(bench);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitInputError;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitInputError;
+  }
+  return kExitUsage;
+}

@@ -1,0 +1,47 @@
+#include <chrono>
+#include <cstdio>
+
+#include "commands.h"
+#include "relaxation.h"
+#include "result_json.h"
+#include "scene.h"
+
+namespace neurocloth {
+
+int run_relax(const RelaxOptions& o) {
+  const Scene scene = load_scene(o.scene);
+  const ClothNetwork net = scene.build_network();
+  ClothState state = scene.initial_state();
+  const auto start = std::chrono::steady_clock::now();
+  const RelaxReport r = relax(net, state);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  nlohmann::json doc;
+  doc["status"] = r.converged ? "ok" : "not_converged";
+  doc["scene"] = o.scene;
+  doc["time"] = 0.0;
+  doc["steps"] = r.iterations;
+  doc["rejected_steps"] = 0;
+  doc["cg_iterations"] = r.cg_iterations;
+  doc["residual_force"] = r.residual_force;
+  doc["last_step"] = r.last_step;
+  doc["wall_seconds"] = wall;
+  doc["nodes"] = net.node_count();
+  doc["springs"] = net.spring_count();
+  doc["energy"] = energy_json(net.energy(state));
+  doc["positions"] = state_json(state, false);
+  doc["velocities"] = state_json(state, true);
+  write_json_atomically(o.out, doc);
+
+  std::printf(
+      "%s: relaxation %s after %d Newton iterations (%d CG), residual force %.3g N, last step %.3g "
+      "m\n",
+      scene.name.c_str(), r.converged ? "converged" : "did NOT converge", r.iterations,
+      r.cg_iterations, r.residual_force, r.last_step);
+  std::printf("  potential energy %.9g J; wrote %s\n", net.energy(state).potential(),
+              o.out.c_str());
+  return r.converged ? kExitOk : kExitNotConverged;
+}
+
+}  // namespace neurocloth

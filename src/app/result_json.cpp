@@ -1,0 +1,70 @@
+#include "result_json.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace neurocloth {
+
+nlohmann::json state_json(const ClothState& s, bool velocities) {
+  nlohmann::json a = nlohmann::json::array();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Vec3 v = velocities ? s.velocity(i) : s.position(i);
+    a.push_back({v.x(), v.y(), v.z()});
+  }
+  return a;
+}
+
+nlohmann::json energy_json(const Energy& e) {
+  return {{"kinetic", e.kinetic},
+          {"potential", e.potential()},
+          {"total", e.total()},
+          {"spring", e.spring},
+          {"gravity", e.gravity}};
+}
+
+nlohmann::json simulation_result(const Simulation& sim, const std::string& scene_path,
+                                 double wall_seconds) {
+  const SolverSettings& s = sim.settings();
+  nlohmann::json doc;
+  doc["status"] = to_string(sim.status());
+  if (sim.status() != RunStatus::ok) doc["reason"] = sim.divergence_reason();
+  doc["scene"] = scene_path;
+  doc["integrator"] = to_string(s.integrator);
+  doc["adaptive"] = s.adaptive;
+  doc["dt"] = s.dt;
+  doc["time"] = sim.time();
+  doc["steps"] = sim.steps();
+  doc["rejected_steps"] = sim.rejected_steps();
+  doc["force_evaluations"] = sim.force_evaluations();
+  doc["cg_iterations"] = sim.cg_iterations();
+  doc["wall_seconds"] = wall_seconds;
+  doc["nodes"] = sim.network().node_count();
+  doc["springs"] = sim.network().spring_count();
+  doc["energy"] = energy_json(sim.energy());
+  doc["positions"] = state_json(sim.state(), false);
+  doc["velocities"] = state_json(sim.state(), true);
+  return doc;
+}
+
+void write_json_atomically(const std::string& path, const nlohmann::json& doc) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot write output file");
+    out << doc.dump(1) << '\n';
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": error while writing output file");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot move output file into place");
+  }
+}
+
+}  // namespace neurocloth

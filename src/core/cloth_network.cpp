@@ -1,0 +1,269 @@
+#include "cloth_network.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reciprocal_sqrt.h"
+
+namespace neurocloth {
+
+ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& material,
+                                 const SpringFunction& function) {
+  ClothNetwork net;
+  const std::size_t n = topology.rest_positions.size();
+  net.masses.inverse_mass.assign(n, 0.0);
+  net.masses.friction.assign(n, 0.0);
+  net.masses.free.assign(n, 1.0);
+  net.masses.external_force.resize(n);
+
+  SpringLayer& L = net.springs;
+  L.function = function;
+  for (const SpringSpec& s : topology.springs) {
+    L.node_a.push_back(s.a);
+    L.node_b.push_back(s.b);
+    L.family.push_back(s.family);
+    L.rest_length.push_back((topology.rest_positions[s.b] - topology.rest_positions[s.a]).norm());
+  }
+  L.stiffness.assign(L.size(), 0.0);
+  L.damping.assign(L.size(), 0.0);
+  L.rebuild_runs();
+  net.apply_material(material);
+  return net;
+}
+
+void ClothNetwork::apply_material(const Material& m) {
+  for (std::size_t s = 0; s < springs.size(); ++s) {
+    switch (springs.family[s]) {
+      case SpringFamily::structural:
+        springs.stiffness[s] = m.spring_constant;
+        break;
+      case SpringFamily::shear:
+        springs.stiffness[s] = m.shear();
+        break;
+      case SpringFamily::bend:
+        springs.stiffness[s] = m.bend();
+        break;
+    }
+    springs.damping[s] = m.viscosity;
+  }
+  std::fill(masses.inverse_mass.begin(), masses.inverse_mass.end(), 1.0 / m.node_mass);
+  std::fill(masses.friction.begin(), masses.friction.end(), m.friction);
+}
+
+namespace {
+
+// Force-neuron outputs live only as long as the acceleration neurons need them:
+// a chunk this size stays in L1, so the outputs never travel to memory.
+constexpr std::int32_t kChunk = 256;
+struct Chunk {
+  alignas(64) double fx[kChunk];
+  alignas(64) double fy[kChunk];
+  alignas(64) double fz[kChunk];
+};
+
+// Springs first..first+count-1 of a run (count <= kChunk), node offsets a, b.
+// Everything is indexed by k, so loads and stores are contiguous and the loop
+// vectorises; the zero-length case is a select, not a branch and not a division
+// by zero.
+// Direct == true: add the outputs straight into the acceleration neurons
+// (fx, fy, fz are F.x + a etc. and the b side is at offset b - a); only valid
+// when the chunk's two node ranges [a, a+count) and [b, b+count) are disjoint.
+// Direct == false: store them in fx, fy, fz for accumulate_chunk.
+template <SpringFunctionKind K, bool Direct>
+void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
+                     std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
+  const double* xa = s.x.data() + a;
+  const double* ya = s.y.data() + a;
+  const double* za = s.z.data() + a;
+  const double* xb = s.x.data() + b;
+  const double* yb = s.y.data() + b;
+  const double* zb = s.z.data() + b;
+  const double* vxa = s.vx.data() + a;
+  const double* vya = s.vy.data() + a;
+  const double* vza = s.vz.data() + a;
+  const double* vxb = s.vx.data() + b;
+  const double* vyb = s.vy.data() + b;
+  const double* vzb = s.vz.data() + b;
+  const double* rest = L.rest_length.data() + first;
+  const double* b1 = L.stiffness.data() + first;
+  const double* b2 = L.damping.data() + first;
+  const double threshold = L.function.strain_threshold;
+  const double extra = L.function.stiffening_factor - 1.0;
+  const std::int32_t offset = b - a;
+  // Outputs never alias inputs, and (Direct) the two write ranges are disjoint,
+  // so no iteration depends on another.
+#pragma GCC ivdep
+  for (std::int32_t k = 0; k < count; ++k) {
+    // Position-force neuron: net = p_b - p_a (the paper's weights 1, -1, written
+    // as b - a so that a positive force pulls n_i1 towards n_i2).
+    const double dx = xb[k] - xa[k], dy = yb[k] - ya[k], dz = zb[k] - za[k];
+    const double len2 = dx * dx + dy * dy + dz * dz;
+    const bool has_direction = len2 > kMinSpringLength * kMinSpringLength;
+    const double safe_len2 = has_direction ? len2 : 1.0;
+    const double inv_len = reciprocal_sqrt(safe_len2);
+    const double len = safe_len2 * inv_len;
+    double e = len - rest[k];                           // spring function: linear ...
+    if constexpr (K == SpringFunctionKind::stiffening)  // ... or stiffer beyond the threshold
+      e += extra * std::max(0.0, e - threshold * rest[k]);
+    // Velocity-force neuron: (v_b - v_a) projected on the spring, times len.
+    const double rel = (vxb[k] - vxa[k]) * dx + (vyb[k] - vya[k]) * dy + (vzb[k] - vza[k]) * dz;
+    // Force neuron: b1 * spring + b2 * damping, along the unit direction.
+    const double magnitude = b1[k] * e + b2[k] * rel * inv_len;
+    const double scale = has_direction ? magnitude * inv_len : 0.0;
+    if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
+      fx[k] += scale * dx;
+      fy[k] += scale * dy;
+      fz[k] += scale * dz;
+      fx[k + offset] -= scale * dx;
+      fy[k + offset] -= scale * dy;
+      fz[k + offset] -= scale * dz;
+    } else {
+      fx[k] = scale * dx;
+      fy[k] = scale * dy;
+      fz[k] = scale * dz;
+    }
+  }
+}
+
+// Acceleration neurons: add each force neuron's output with weight +1 at n_i1
+// and -1 at n_i2. Separate contiguous passes for the two ends, so no two writes
+// in one loop can hit the same node.
+void accumulate_chunk(std::int32_t count, std::int32_t a, std::int32_t b, const double* fx,
+                      const double* fy, const double* fz, NodeVectors& F) {
+  const double* const src[3] = {fx, fy, fz};
+  double* const dst[3] = {F.x.data(), F.y.data(), F.z.data()};
+  for (int c = 0; c < 3; ++c) {
+    const double* f = src[c];
+    double* to_a = dst[c] + a;
+#pragma GCC ivdep
+    for (std::int32_t k = 0; k < count; ++k)
+      to_a[k] += f[k];
+    double* to_b = dst[c] + b;
+#pragma GCC ivdep
+    for (std::int32_t k = 0; k < count; ++k)
+      to_b[k] -= f[k];
+  }
+}
+
+// Below this node offset a direct chunk would be too short to fill a vector.
+constexpr std::int32_t kMinDirectOffset = 16;
+
+// Calls fn(first, count, a, b, direct) for every chunk of every run. A run whose
+// ends are at least kMinDirectOffset nodes apart is cut into chunks no longer
+// than that offset, so each chunk's two node ranges are disjoint (direct).
+template <typename Fn>
+void for_each_chunk(const SpringLayer& L, Fn&& fn) {
+  for (const SpringRun& r : L.runs) {
+    const std::int32_t offset = r.node_b - r.node_a;
+    const bool direct = offset >= kMinDirectOffset || -offset >= kMinDirectOffset;
+    const std::int32_t size = direct ? std::min(kChunk, offset < 0 ? -offset : offset) : kChunk;
+    for (std::int32_t k = 0; k < r.count; k += size)
+      fn(r.first + k, std::min(size, r.count - k), r.node_a + k, r.node_b + k, direct);
+  }
+}
+
+template <SpringFunctionKind K>
+void propagate_all(const ClothNetwork& net, const ClothState& s, NodeVectors& F) {
+  Chunk chunk;
+  for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
+                                  std::int32_t b, bool direct) {
+    if (direct) {
+      propagate_chunk<K, true>(net.springs, first, count, a, b, s, F.x.data() + a, F.y.data() + a,
+                               F.z.data() + a);
+    } else {
+      propagate_chunk<K, false>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
+      accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, F);
+    }
+  });
+}
+
+template <SpringFunctionKind K>
+void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations& act) {
+  for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
+                                  std::int32_t b, bool) {
+    propagate_chunk<K, false>(net.springs, first, count, a, b, s, act.fx.data() + first,
+                              act.fy.data() + first, act.fz.data() + first);
+  });
+}
+
+}  // namespace
+
+void ClothNetwork::net_forces(const ClothState& s, NodeVectors& F) const {
+  // External force is the acceleration neurons' bias input.
+  std::copy(masses.external_force.x.begin(), masses.external_force.x.end(), F.x.begin());
+  std::copy(masses.external_force.y.begin(), masses.external_force.y.end(), F.y.begin());
+  std::copy(masses.external_force.z.begin(), masses.external_force.z.end(), F.z.begin());
+  if (springs.function.kind == SpringFunctionKind::linear)
+    propagate_all<SpringFunctionKind::linear>(*this, s, F);
+  else
+    propagate_all<SpringFunctionKind::stiffening>(*this, s, F);
+}
+
+int ClothNetwork::degenerate_springs(const ClothState& s) const {
+  int count = 0;
+  for (std::size_t k = 0; k < springs.size(); ++k)
+    count += (s.position(springs.node_b[k]) - s.position(springs.node_a[k])).squaredNorm() <=
+             kMinSpringLength * kMinSpringLength;
+  return count;
+}
+
+void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act) const {
+  act.resize(spring_count());
+  if (springs.function.kind == SpringFunctionKind::linear)
+    outputs_all<SpringFunctionKind::linear>(*this, s, act);
+  else
+    outputs_all<SpringFunctionKind::stiffening>(*this, s, act);
+}
+
+void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {
+  const std::size_t n = node_count();
+  const double* __restrict w = masses.inverse_mass.data();
+  const double* __restrict free = masses.free.data();
+  const double g[3] = {gravity.x(), gravity.y(), gravity.z()};
+  const double* const in[3] = {F.x.data(), F.y.data(), F.z.data()};
+  double* const out[3] = {a.x.data(), a.y.data(), a.z.data()};
+  for (int c = 0; c < 3; ++c) {
+    const double* __restrict f = in[c];
+    double* __restrict o = out[c];
+#pragma GCC ivdep
+    for (std::size_t i = 0; i < n; ++i)
+      o[i] = free[i] * (w[i] * f[i] + g[c]);
+  }
+}
+
+double ClothNetwork::max_net_force(const NodeVectors& F) const {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < node_count(); ++i) {
+    if (masses.free[i] == 0.0) continue;
+    const double m = 1.0 / masses.inverse_mass[i];
+    const Vec3 f = F.at(i) + m * gravity;
+    const double n = f.norm();
+    if (!(n <= worst)) worst = n;  // propagates NaN: a NaN force is the worst force
+  }
+  return worst;
+}
+
+Energy ClothNetwork::energy(const ClothState& s) const {
+  Energy e;
+  for (std::size_t i = 0; i < node_count(); ++i) {
+    if (masses.free[i] == 0.0) continue;  // pinned nodes neither move nor fall
+    const double m = 1.0 / masses.inverse_mass[i];
+    e.kinetic += 0.5 * m * s.velocity(i).squaredNorm();
+    e.gravity -= m * gravity.dot(s.position(i));
+  }
+  for (std::size_t k = 0; k < springs.size(); ++k) {
+    const double len = (s.position(springs.node_b[k]) - s.position(springs.node_a[k])).norm();
+    e.spring += springs.stiffness[k] *
+                springs.function.energy(len - springs.rest_length[k], springs.rest_length[k]);
+  }
+  return e;
+}
+
+ClothState ClothNetwork::rest_state(const std::vector<Vec3>& positions) const {
+  ClothState s(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    s.set_position(i, positions[i]);
+  return s;
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,75 @@
+#pragma once
+// The cloth as the paper's recurrent network: a spring layer feeding a mass
+// layer, whose position and velocity neurons feed back into the spring layer.
+// The network is the model (parameters); the neuron outputs that change every
+// step live in ClothState, and scratch activations in SpringActivations, so a
+// const network can be evaluated on any state (RK4 stages, learning, rollback).
+#include <vector>
+
+#include "cloth_state.h"
+#include "cloth_topology.h"
+#include "mass_layer.h"
+#include "material.h"
+#include "spring_layer.h"
+
+namespace neurocloth {
+
+// Outputs of the force neurons, one 3-vector per spring: the force on n_i1
+// (the force on n_i2 is its negative). The step itself does not keep them (see
+// net_forces); spring_outputs() fills this for whoever wants to look.
+struct SpringActivations {
+  std::vector<double> fx, fy, fz;
+  void resize(std::size_t springs) {
+    for (auto* a : {&fx, &fy, &fz})
+      a->assign(springs, 0.0);
+  }
+};
+
+// Below this length a spring has no direction; its force is skipped, never divided by.
+inline constexpr double kMinSpringLength = 1e-12;
+
+struct Energy {
+  double kinetic = 0;
+  double spring = 0;
+  double gravity = 0;  // -sum m g.p over free nodes
+  double potential() const { return spring + gravity; }
+  double total() const { return kinetic + spring + gravity; }
+};
+
+class ClothNetwork {
+ public:
+  SpringLayer springs;
+  MassLayer masses;
+  Vec3 gravity = Vec3(0, -9.81, 0);
+
+  // Builds the layers from a topology: one spring per SpringSpec (rest length from
+  // the rest positions), the material's constants as initial weights.
+  static ClothNetwork build(const ClothTopology& topology, const Material& material,
+                            const SpringFunction& function = {});
+
+  std::size_t node_count() const { return masses.size(); }
+  std::size_t spring_count() const { return springs.size(); }
+  double mass(std::size_t node) const { return 1.0 / masses.inverse_mass[node]; }
+  void set_pinned(std::size_t node, bool pinned) { masses.free[node] = pinned ? 0.0 : 1.0; }
+  // Re-applies a material's constants to every spring and node (all weights).
+  void apply_material(const Material& material);
+
+  // Propagates the spring layer and sums its outputs into the acceleration
+  // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1). Allocates nothing.
+  // A spring shorter than kMinSpringLength contributes no force (no direction).
+  void net_forces(const ClothState& state, NodeVectors& force) const;
+  // How many springs are that short at `state` (a diagnostic, off the hot path).
+  int degenerate_springs(const ClothState& state) const;
+  // The force neurons' outputs themselves, one per spring (for inspection and learning).
+  void spring_outputs(const ClothState& state, SpringActivations& act) const;
+  // a_j = free_j * (F_j / m_j + g): what the velocity neuron integrates.
+  void accelerations(const NodeVectors& force, NodeVectors& acc) const;
+  // Largest |F_j + m_j g| over free nodes: the paper's "max sum f_i" (Table 1).
+  double max_net_force(const NodeVectors& force) const;
+
+  Energy energy(const ClothState& state) const;
+  // The state at rest: nodes at `positions`, velocities zero.
+  ClothState rest_state(const std::vector<Vec3>& positions) const;
+};
+
+}  // namespace neurocloth

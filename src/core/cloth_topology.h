@@ -1,0 +1,40 @@
+#pragma once
+// What a cloth builder produces: rest geometry and the spring graph, before any
+// material is applied. Builders emit springs in "stencil order" where they can
+// (consecutive springs whose two ends both advance by one node), which the spring
+// layer turns into runs that vectorise.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vec3.h"
+
+namespace neurocloth {
+
+enum class SpringFamily : std::uint8_t { structural = 0, shear = 1, bend = 2 };
+inline constexpr int kSpringFamilyCount = 3;
+const char* to_string(SpringFamily f);
+
+struct SpringSpec {
+  std::int32_t a;  // n_i1 in the paper
+  std::int32_t b;  // n_i2
+  SpringFamily family;
+};
+
+struct ClothTopology {
+  std::vector<Vec3> rest_positions;
+  std::vector<SpringSpec> springs;
+  std::vector<std::array<std::int32_t, 3>> triangles;  // for rendering and wind later
+  int rows = 0;                                        // grid shape; 0 for meshes
+  int cols = 0;
+};
+
+// Which spring families a builder creates.
+struct SpringFamilies {
+  bool structural = true;
+  bool shear = true;
+  bool bend = true;
+};
+
+}  // namespace neurocloth

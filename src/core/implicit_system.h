@@ -1,0 +1,49 @@
+#pragma once
+// The network linearised about a state, as a sparse operator that is never
+// assembled: per spring a symmetric 3x3 stiffness block and a damping block.
+//   A u = alpha M u + beta D u + gamma K u,   K = -df/dx,  D = -df/dv
+// Solved with Jacobi-preconditioned conjugate gradient. Pinned nodes are
+// filtered (their rows and unknowns are zero), so A stays symmetric positive
+// definite on the free nodes.
+#include <vector>
+
+#include "cloth_network.h"
+
+namespace neurocloth {
+
+struct CgResult {
+  int iterations = 0;
+  bool converged = true;
+  double relative_residual = 0;
+};
+
+class ImplicitSystem {
+ public:
+  explicit ImplicitSystem(const ClothNetwork& net);
+
+  // Spring blocks at `state`. The transverse stiffness f/l of a compressed spring
+  // is negative; it is dropped so that K stays positive semi-definite (the
+  // standard remedy since Baraff & Witkin; it removes the buckling instability from
+  // the linear solve, not from the dynamics).
+  void linearise(const ClothNetwork& net, const ClothState& state);
+
+  // y = alpha M u + beta D u + gamma K u on free nodes, 0 on pinned ones.
+  // Vectors are 3N, interleaved (x0 y0 z0 x1 ...).
+  void apply(const ClothNetwork& net, double alpha, double beta, double gamma,
+             const std::vector<double>& u, std::vector<double>& y) const;
+
+  // Solves A x = b; x holds the initial guess on entry. Stops when
+  // |r| <= tolerance * |b| or after max_iterations.
+  CgResult solve(const ClothNetwork& net, double alpha, double beta, double gamma,
+                 const std::vector<double>& b, std::vector<double>& x, double tolerance,
+                 int max_iterations);
+
+ private:
+  // Per spring: K block (xx xy xz yy yz zz) and D block = d * u u^T stored as the
+  // unit direction u and the damping weight.
+  std::vector<double> k_;    // 6 per spring
+  std::vector<double> dir_;  // 3 per spring
+  std::vector<double> r_, z_, p_, q_, diag_;
+};
+
+}  // namespace neurocloth

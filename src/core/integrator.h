@@ -1,0 +1,51 @@
+#pragma once
+// Every integrator steps the same network: it reads the neurons' outputs
+// (ClothState), asks the network for forces, and writes the next state. None of
+// them owns the network or allocates during a step.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cloth_network.h"
+
+namespace neurocloth {
+
+enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler };
+inline constexpr IntegratorKind kAllIntegrators[] = {
+    IntegratorKind::network, IntegratorKind::explicit_euler, IntegratorKind::verlet,
+    IntegratorKind::rk4, IntegratorKind::implicit_euler};
+
+const char* to_string(IntegratorKind k);
+std::optional<IntegratorKind> parse_integrator(const std::string& name);
+// "network, explicit_euler, ..." for error messages.
+std::string integrator_names();
+
+struct StepReport {
+  int force_evaluations = 0;  // including the start-of-step evaluation
+  int cg_iterations = 0;
+  bool cg_converged = true;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual IntegratorKind kind() const = 0;
+  // Global order of accuracy.
+  virtual int order() const = 0;
+  // Largest h * omega for which an undamped linear oscillator stays bounded
+  // (infinity when unconditionally stable). The adaptive step scales its bound by it.
+  virtual double stability_limit() const = 0;
+  // Advances `in` by h into `out` (which must not alias `in` unless steps_in_place()).
+  // `start_force` is net_forces(in): the caller always has it, for the adaptive rule or its FSAL
+  // cache.
+  virtual StepReport step(const ClothNetwork& net, const ClothState& in,
+                          const NodeVectors& start_force, double h, ClothState& out) = 0;
+  // True when `out` may be the same object as `in`: a fixed step then touches
+  // one state buffer instead of two (half the memory traffic on large cloths).
+  virtual bool steps_in_place() const { return false; }
+};
+
+// Scratch is sized for `net`; the integrator may then step any network of that size.
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net);
+
+}  // namespace neurocloth

@@ -1,0 +1,13 @@
+#pragma once
+// Factories of the concrete integrators; each lives in its own file.
+#include <memory>
+
+#include "integrator.h"
+
+namespace neurocloth {
+std::unique_ptr<Integrator> make_network_propagation(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_explicit_euler(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_velocity_verlet(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_runge_kutta4(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net);
+}  // namespace neurocloth

@@ -1,0 +1,98 @@
+#include "json_fields.h"
+
+#include <cmath>
+#include <regex>
+
+namespace neurocloth {
+namespace {
+
+nlohmann::json parse_or_throw(const std::string& text, const std::string& file) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann says "... at line L, column C: <what>"; keep the part after the position.
+    const std::string what = e.what();
+    std::smatch m;
+    int line = 0, column = 0;
+    if (std::regex_search(what, m, std::regex("line ([0-9]+), column ([0-9]+)"))) {
+      line = std::stoi(m[1].str());
+      column = std::stoi(m[2].str());
+    }
+    const auto colon = what.find(": ", what.find("column"));
+    const std::string detail = colon == std::string::npos ? what : what.substr(colon + 2);
+    throw InputError(file, "", "malformed JSON: " + detail, line, column);
+  }
+}
+
+const char* type_name(const nlohmann::json& v) {
+  return v.type_name();
+}
+
+}  // namespace
+
+JsonFields::JsonFields(const std::string& text, std::string file)
+    : text_(text), file_(std::move(file)), root_(parse_or_throw(text_, file_)), locator_(text_) {}
+
+void JsonFields::fail(const std::string& field, const std::string& message) const {
+  const auto [line, column] = locator_.find(field);
+  throw InputError(file_, field, message, line, column);
+}
+
+void JsonFields::require_object(const nlohmann::json& obj, const std::string& field) const {
+  if (!obj.is_object()) fail(field, std::string("expected an object, got ") + type_name(obj));
+}
+
+void JsonFields::allow_only(const nlohmann::json& obj, const std::string& field,
+                            std::initializer_list<const char*> allowed) const {
+  require_object(obj, field);
+  for (const auto& item : obj.items()) {
+    bool known = false;
+    std::string list;
+    for (const char* a : allowed) {
+      known = known || item.key() == a;
+      list += (list.empty() ? "" : ", ") + std::string(a);
+    }
+    if (!known)
+      fail(JsonLocator::member(field, item.key()), "unknown key (expected one of: " + list + ")");
+  }
+}
+
+const nlohmann::json& JsonFields::member(const nlohmann::json& obj, const std::string& field,
+                                         const char* key) const {
+  require_object(obj, field);
+  if (!obj.contains(key)) fail(JsonLocator::member(field, key), "missing required key");
+  return obj.at(key);
+}
+
+double JsonFields::number(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_number()) fail(field, std::string("expected a number, got ") + type_name(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(field, "expected a finite number");
+  return d;
+}
+
+int JsonFields::integer(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_number_integer()) fail(field, std::string("expected an integer, got ") + type_name(v));
+  const auto i = v.get<long long>();
+  if (i < -2147483647LL || i > 2147483647LL) fail(field, "integer out of range");
+  return static_cast<int>(i);
+}
+
+bool JsonFields::boolean(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_boolean()) fail(field, std::string("expected true or false, got ") + type_name(v));
+  return v.get<bool>();
+}
+
+std::string JsonFields::string(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_string()) fail(field, std::string("expected a string, got ") + type_name(v));
+  return v.get<std::string>();
+}
+
+Vec3 JsonFields::vec3(const nlohmann::json& v, const std::string& field) const {
+  if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 numbers [x, y, z]");
+  return {number(v[0], JsonLocator::element(field, 0)),
+          number(v[1], JsonLocator::element(field, 1)),
+          number(v[2], JsonLocator::element(field, 2))};
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,86 @@
+#include "json_locator.h"
+
+#include <cctype>
+
+namespace neurocloth {
+
+JsonLocator::JsonLocator(const std::string& text) : text_(text) {
+  skip_space();
+  if (pos_ < text_.size()) value("");
+}
+
+std::pair<int, int> JsonLocator::find(const std::string& field) const {
+  const auto it = where_.find(field);
+  return it == where_.end() ? std::pair<int, int>{0, 0} : it->second;
+}
+
+void JsonLocator::advance() {
+  if (pos_ >= text_.size()) return;
+  if (text_[pos_] == '\n') {
+    ++line_;
+    column_ = 1;
+  } else {
+    ++column_;
+  }
+  ++pos_;
+}
+
+void JsonLocator::skip_space() {
+  while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_])))
+    advance();
+}
+
+std::string JsonLocator::string_token() {
+  std::string s;
+  advance();  // opening quote
+  while (pos_ < text_.size() && peek() != '"') {
+    if (peek() == '\\') {
+      advance();
+      s += peek();
+    } else {
+      s += peek();
+    }
+    advance();
+  }
+  advance();  // closing quote
+  return s;
+}
+
+void JsonLocator::value(const std::string& field) {
+  where_[field] = {line_, column_};
+  const char c = peek();
+  if (c == '{') {
+    advance();
+    skip_space();
+    while (pos_ < text_.size() && peek() != '}') {
+      const std::string key = string_token();
+      skip_space();
+      advance();  // ':'
+      skip_space();
+      value(member(field, key));
+      skip_space();
+      if (peek() == ',') advance();
+      skip_space();
+    }
+    advance();
+  } else if (c == '[') {
+    advance();
+    skip_space();
+    std::size_t index = 0;
+    while (pos_ < text_.size() && peek() != ']') {
+      value(element(field, index++));
+      skip_space();
+      if (peek() == ',') advance();
+      skip_space();
+    }
+    advance();
+  } else if (c == '"') {
+    string_token();
+  } else {
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(peek())) &&
+           peek() != ',' && peek() != '}' && peek() != ']')
+      advance();
+  }
+}
+
+}  // namespace neurocloth

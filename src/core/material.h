@@ -1,0 +1,19 @@
+#pragma once
+// The physical parameters a material gives the network (paper: "spring
+// constant, mass, viscosity and friction force"). The fuzzy system will derive
+// these from linguistic descriptions; a scene may also state them directly.
+namespace neurocloth {
+
+struct Material {
+  double spring_constant = 200.0;  // N/m, structural springs
+  double shear_constant = -1.0;    // N/m; < 0 means "same as spring_constant"
+  double bend_constant = -1.0;     // N/m; < 0 means "same as spring_constant"
+  double node_mass = 0.01;         // kg per node
+  double viscosity = 0.05;         // N s/m, damping along each spring
+  double friction = 0.1;           // Coulomb coefficient (used by colliders)
+
+  double shear() const { return shear_constant < 0 ? spring_constant : shear_constant; }
+  double bend() const { return bend_constant < 0 ? spring_constant : bend_constant; }
+};
+
+}  // namespace neurocloth

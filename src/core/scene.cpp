@@ -1,0 +1,278 @@
+#include "scene.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "grid_builder.h"
+#include "json_fields.h"
+#include "obj_mesh_builder.h"
+
+namespace neurocloth {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Resolves a path from a scene: relative to the scene's folder, then to assets/.
+std::string resolve(const std::string& scene_path, const std::string& relative) {
+  const fs::path p(relative);
+  if (p.is_absolute()) return relative;
+  const fs::path beside = fs::path(scene_path).parent_path() / p;
+  if (fs::exists(beside)) return beside.string();
+  const fs::path in_assets = fs::path(assets_directory()) / p;
+  if (fs::exists(in_assets)) return in_assets.string();
+  return beside.string();  // the error will name the path tried first
+}
+
+SpringFamilies read_families(const JsonFields& in, const json& cloth, bool mesh) {
+  SpringFamilies f{false, false, false};
+  if (!in.has(cloth, "springs")) return mesh ? SpringFamilies{true, false, true} : SpringFamilies{};
+  const json& list = cloth.at("springs");
+  const std::string field = "cloth.springs";
+  if (!list.is_array()) in.fail(field, "expected an array of spring families");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string name = in.string(list[i], JsonLocator::element(field, i));
+    if (name == "structural")
+      f.structural = true;
+    else if (name == "shear" && !mesh)
+      f.shear = true;
+    else if (name == "bend")
+      f.bend = true;
+    else if (name == "shear")
+      in.fail(JsonLocator::element(field, i),
+              "a mesh cloth has no shear springs (its edges are structural)");
+    else
+      in.fail(JsonLocator::element(field, i),
+              "unknown spring family '" + name + "' (expected structural, shear or bend)");
+  }
+  return f;
+}
+
+GridSpec read_grid(const JsonFields& in, const json& grid, const SpringFamilies& families) {
+  const std::string field = "cloth.grid";
+  in.allow_only(grid, field,
+                {"rows", "cols", "spacing", "origin", "row_direction", "col_direction"});
+  GridSpec spec;
+  spec.families = families;
+  spec.rows = in.integer(in.member(grid, field, "rows"), field + ".rows");
+  if (spec.rows < 1)
+    in.fail(field + ".rows", "must be >= 1 (got " + std::to_string(spec.rows) + ")");
+  spec.cols = in.integer(in.member(grid, field, "cols"), field + ".cols");
+  if (spec.cols < 1)
+    in.fail(field + ".cols", "must be >= 1 (got " + std::to_string(spec.cols) + ")");
+  if (static_cast<long long>(spec.rows) * spec.cols > 4'000'000)
+    in.fail(field, "more than 4 million nodes");
+  spec.spacing = in.number(in.member(grid, field, "spacing"), field + ".spacing");
+  if (!(spec.spacing > 0)) in.fail(field + ".spacing", "must be > 0");
+  if (in.has(grid, "origin")) spec.origin = in.vec3(grid.at("origin"), field + ".origin");
+  if (in.has(grid, "row_direction"))
+    spec.row_direction = in.vec3(grid.at("row_direction"), field + ".row_direction");
+  if (in.has(grid, "col_direction"))
+    spec.col_direction = in.vec3(grid.at("col_direction"), field + ".col_direction");
+  if (spec.row_direction.norm() == 0) in.fail(field + ".row_direction", "must not be zero");
+  if (spec.col_direction.norm() == 0) in.fail(field + ".col_direction", "must not be zero");
+  if (spec.row_direction.normalized().cross(spec.col_direction.normalized()).norm() < 1e-9)
+    in.fail(field + ".col_direction", "must not be parallel to row_direction");
+  return spec;
+}
+
+ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFamilies& families) {
+  const std::string field = "cloth.mesh";
+  in.allow_only(mesh, field, {"obj", "scale", "translate"});
+  ObjMeshSpec spec;
+  spec.path = resolve(in.file(), in.string(in.member(mesh, field, "obj"), field + ".obj"));
+  if (in.has(mesh, "scale")) {
+    spec.scale = in.number(mesh.at("scale"), field + ".scale");
+    if (!(spec.scale > 0)) in.fail(field + ".scale", "must be > 0");
+  }
+  if (in.has(mesh, "translate"))
+    spec.translate = in.vec3(mesh.at("translate"), field + ".translate");
+  spec.bend = families.bend;
+  ClothTopology t = build_obj_mesh(spec);  // throws InputError naming the OBJ file
+  if (!families.structural) {
+    t.springs.erase(
+        std::remove_if(t.springs.begin(), t.springs.end(),
+                       [](const SpringSpec& s) { return s.family == SpringFamily::structural; }),
+        t.springs.end());
+  }
+  return t;
+}
+
+std::vector<int> read_pins(const JsonFields& in, const json& cloth, const ClothTopology& t) {
+  std::vector<int> pins;
+  if (!in.has(cloth, "pins")) return pins;
+  const json& list = cloth.at("pins");
+  const std::string field = "cloth.pins";
+  if (!list.is_array()) in.fail(field, "expected an array of [row, col] pairs or node indices");
+  const int nodes = static_cast<int>(t.rest_positions.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string f = JsonLocator::element(field, i);
+    int node;
+    if (list[i].is_array()) {
+      if (t.rows == 0) in.fail(f, "a mesh cloth pins by node index, not [row, col]");
+      if (list[i].size() != 2) in.fail(f, "expected [row, col]");
+      const int r = in.integer(list[i][0], JsonLocator::element(f, 0));
+      const int c = in.integer(list[i][1], JsonLocator::element(f, 1));
+      if (r < 0 || r >= t.rows || c < 0 || c >= t.cols)
+        in.fail(f, "pin [" + std::to_string(r) + ", " + std::to_string(c) + "] is outside the " +
+                       std::to_string(t.rows) + "x" + std::to_string(t.cols) + " grid");
+      node = r * t.cols + c;
+    } else {
+      node = in.integer(list[i], f);
+      if (node < 0 || node >= nodes)
+        in.fail(f, "node " + std::to_string(node) + " does not exist (the cloth has " +
+                       std::to_string(nodes) + " nodes)");
+    }
+    pins.push_back(node);
+  }
+  return pins;
+}
+
+SpringFunction read_spring_function(const JsonFields& in, const json& cloth) {
+  SpringFunction fn;
+  if (!in.has(cloth, "spring_function")) return fn;
+  const json& v = cloth.at("spring_function");
+  const std::string field = "cloth.spring_function";
+  in.allow_only(v, field, {"type", "strain", "factor"});
+  const std::string type = in.string(in.member(v, field, "type"), field + ".type");
+  if (type == "linear")
+    fn.kind = SpringFunctionKind::linear;
+  else if (type == "stiffening")
+    fn.kind = SpringFunctionKind::stiffening;
+  else
+    in.fail(field + ".type",
+            "unknown spring function '" + type + "' (expected linear or stiffening)");
+  if (in.has(v, "strain")) fn.strain_threshold = in.number(v.at("strain"), field + ".strain");
+  if (fn.strain_threshold < 0) in.fail(field + ".strain", "must be >= 0");
+  if (in.has(v, "factor")) fn.stiffening_factor = in.number(v.at("factor"), field + ".factor");
+  if (fn.stiffening_factor < 1) in.fail(field + ".factor", "must be >= 1");
+  return fn;
+}
+
+Material read_material(const JsonFields& in, const json& root) {
+  const std::string field = "material";
+  const json& m = in.member(root, "", "material");
+  in.allow_only(
+      m, field,
+      {"spring_constant", "shear_constant", "bend_constant", "node_mass", "viscosity", "friction"});
+  auto read = [&](const char* key, bool required, double fallback) {
+    if (!required && !in.has(m, key)) return fallback;
+    return in.number(in.member(m, field, key), field + "." + key);
+  };
+  Material mat;
+  mat.spring_constant = read("spring_constant", true, 0);
+  mat.shear_constant = read("shear_constant", false, -1);
+  mat.bend_constant = read("bend_constant", false, -1);
+  mat.node_mass = read("node_mass", true, 0);
+  mat.viscosity = read("viscosity", true, 0);
+  mat.friction = read("friction", false, 0.0);
+  if (mat.spring_constant < 0)
+    in.fail(field + ".spring_constant", "must be >= 0 (stiffness cannot be negative)");
+  if (in.has(m, "shear_constant") && mat.shear_constant < 0)
+    in.fail(field + ".shear_constant", "must be >= 0");
+  if (in.has(m, "bend_constant") && mat.bend_constant < 0)
+    in.fail(field + ".bend_constant", "must be >= 0");
+  if (!(mat.node_mass > 0)) in.fail(field + ".node_mass", "must be > 0 (a mass point needs mass)");
+  if (mat.viscosity < 0) in.fail(field + ".viscosity", "must be >= 0");
+  if (mat.friction < 0) in.fail(field + ".friction", "must be >= 0");
+  return mat;
+}
+
+SolverSettings read_solver(const JsonFields& in, const json& root) {
+  SolverSettings s;
+  if (!in.has(root, "solver")) return s;
+  const json& v = root.at("solver");
+  const std::string field = "solver";
+  in.allow_only(v, field,
+                {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
+                 "check_interval"});
+  if (in.has(v, "integrator")) {
+    const std::string name = in.string(v.at("integrator"), field + ".integrator");
+    const auto kind = parse_integrator(name);
+    if (!kind)
+      in.fail(field + ".integrator",
+              "unknown integrator '" + name + "' (expected one of: " + integrator_names() + ")");
+    s.integrator = *kind;
+  }
+  if (in.has(v, "dt")) s.dt = in.number(v.at("dt"), field + ".dt");
+  if (!(s.dt > 0)) in.fail(field + ".dt", "must be > 0");
+  if (in.has(v, "adaptive")) s.adaptive = in.boolean(v.at("adaptive"), field + ".adaptive");
+  AdaptiveSettings& a = s.adaptive_settings;
+  if (in.has(v, "safety")) a.safety = in.number(v.at("safety"), field + ".safety");
+  if (!(a.safety > 0 && a.safety <= 1)) in.fail(field + ".safety", "must be in (0, 1]");
+  if (in.has(v, "growth_tolerance"))
+    a.growth_tolerance = in.number(v.at("growth_tolerance"), field + ".growth_tolerance");
+  if (a.growth_tolerance < 0) in.fail(field + ".growth_tolerance", "must be >= 0");
+  if (in.has(v, "min_step_fraction"))
+    a.min_step_fraction = in.number(v.at("min_step_fraction"), field + ".min_step_fraction");
+  if (!(a.min_step_fraction > 0 && a.min_step_fraction <= 1))
+    in.fail(field + ".min_step_fraction", "must be in (0, 1]");
+  if (in.has(v, "check_interval"))
+    s.divergence.check_interval = in.integer(v.at("check_interval"), field + ".check_interval");
+  if (s.divergence.check_interval < 1) in.fail(field + ".check_interval", "must be >= 1");
+  return s;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  const JsonFields in(text, path);
+  const json& root = in.root();
+  in.allow_only(root, "", {"name", "description", "cloth", "material", "gravity", "solver"});
+  Scene scene;
+  scene.path = path;
+  scene.name =
+      in.has(root, "name") ? in.string(root.at("name"), "name") : fs::path(path).stem().string();
+  if (in.has(root, "description")) in.string(root.at("description"), "description");
+
+  const json& cloth = in.member(root, "", "cloth");
+  in.allow_only(cloth, "cloth", {"grid", "mesh", "springs", "pins", "spring_function"});
+  const bool grid = in.has(cloth, "grid"), mesh = in.has(cloth, "mesh");
+  if (grid == mesh) in.fail("cloth", "needs exactly one of 'grid' or 'mesh'");
+  const SpringFamilies families = read_families(in, cloth, mesh);
+  if (grid) {
+    scene.grid = read_grid(in, cloth.at("grid"), families);
+    scene.topology = build_grid(*scene.grid);
+  } else {
+    scene.topology = read_mesh(in, cloth.at("mesh"), families);
+  }
+  scene.pins = read_pins(in, cloth, scene.topology);
+  scene.spring_function = read_spring_function(in, cloth);
+  scene.material = read_material(in, root);
+  if (in.has(root, "gravity")) scene.gravity = in.vec3(root.at("gravity"), "gravity");
+  scene.solver = read_solver(in, root);
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path, "", "cannot open scene file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+ClothNetwork Scene::build_network() const {
+  ClothNetwork net = ClothNetwork::build(topology, material, spring_function);
+  net.gravity = gravity;
+  for (int p : pins)
+    net.set_pinned(p, true);
+  return net;
+}
+
+ClothState Scene::initial_state() const {
+  ClothState s(topology.rest_positions.size());
+  for (std::size_t i = 0; i < topology.rest_positions.size(); ++i)
+    s.set_position(i, topology.rest_positions[i]);
+  return s;
+}
+
+std::string assets_directory() {
+  if (const char* env = std::getenv("NEUROCLOTH_ASSETS")) return env;
+  return NEUROCLOTH_ASSETS_DIR;
+}
+
+}  // namespace neurocloth

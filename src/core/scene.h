@@ -1,0 +1,45 @@
+#pragma once
+// A scene file (JSON, format in docs/scenes.md) read into everything needed to
+// build and run a simulation. One scene definition serves the app, the tests and
+// the benchmarks.
+#include <string>
+#include <vector>
+
+#include <optional>
+
+#include "cloth_network.h"
+#include "grid_builder.h"
+#include "simulation.h"
+#include "solver_settings.h"
+
+namespace neurocloth {
+
+struct Scene {
+  std::string path;  // the file it came from ("" when parsed from text)
+  std::string name;
+  ClothTopology topology;
+  std::optional<GridSpec> grid;  // set when the cloth is a grid
+  std::vector<int> pins;         // node indices
+  Material material;
+  SpringFunction spring_function;
+  Vec3 gravity = Vec3(0, -9.81, 0);
+  SolverSettings solver;
+
+  ClothNetwork build_network() const;
+  ClothState initial_state() const;  // rest positions, zero velocity
+  Simulation make_simulation() const {
+    return Simulation(build_network(), initial_state(), solver);
+  }
+};
+
+// Throws InputError (file, field, line) for anything wrong; never returns a
+// half-read scene.
+Scene load_scene(const std::string& path);
+// `path` is used for messages and to resolve relative paths (OBJ files).
+Scene parse_scene(const std::string& text, const std::string& path);
+
+// Where assets/ is: the NEUROCLOTH_ASSETS environment variable, else the source
+// tree's assets/ compiled in.
+std::string assets_directory();
+
+}  // namespace neurocloth

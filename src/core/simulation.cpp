@@ -1,0 +1,183 @@
+#include "simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "stability.h"
+
+namespace neurocloth {
+
+const char* to_string(RunStatus s) {
+  return s == RunStatus::ok ? "ok" : "diverged";
+}
+
+Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings settings)
+    : net_(std::move(network)),
+      settings_(settings),
+      integrator_(make_integrator(settings.integrator, net_)),
+      a_(initial),
+      b_(initial),
+      checkpoint_(initial),
+      force_a_(net_.node_count()),
+      force_b_(net_.node_count()),
+      monitor_(net_, initial, settings.divergence) {
+  if (initial.size() != net_.node_count())
+    throw std::invalid_argument("state size differs from the network's");
+  if (!(settings.dt > 0.0)) throw std::invalid_argument("dt must be > 0");
+  for (std::size_t i = 0; i < net_.node_count(); ++i)
+    if (net_.masses.free[i] != 0.0)
+      force_scale_ = std::max(force_scale_, std::abs(net_.mass(i)) * net_.gravity.norm());
+  if (force_scale_ == 0.0) force_scale_ = 1e-9;
+}
+
+ClothNetwork& Simulation::mutable_network() {
+  front_forces_valid_ = false;
+  cap_ = -1;
+  former_force_ = -1;
+  return net_;
+}
+
+void Simulation::set_external_force(std::size_t node, const Vec3& f) {
+  mutable_network().masses.external_force.x[node] = f.x();
+  net_.masses.external_force.y[node] = f.y();
+  net_.masses.external_force.z[node] = f.z();
+}
+
+void Simulation::set_state(const ClothState& s) {
+  if (s.size() != net_.node_count())
+    throw std::invalid_argument("state size differs from the network's");
+  *front_ = s;
+  checkpoint_ = s;
+  checkpoint_time_ = time_;
+  checkpoint_steps_ = steps_;
+  front_forces_valid_ = false;
+  former_force_ = -1;
+}
+
+double Simulation::step_cap() {
+  if (cap_ < 0) {
+    const double bound = stable_step_bound(net_, integrator_->stability_limit());
+    cap_ = std::min(settings_.dt, settings_.adaptive_settings.safety * bound);
+  }
+  return cap_;
+}
+
+RunStatus Simulation::advance(double seconds) {
+  if (status_ != RunStatus::ok || !(seconds > 0.0)) return status_;
+  const double t_end = time_ + seconds;
+  const double dt = settings_.dt;
+  while (status_ == RunStatus::ok && time_ < t_end) {
+    const double remaining = t_end - time_;
+    const bool last = remaining <= dt * (1.0 + 1e-9);
+    // A remainder within round-off of dt is dt: then advance(k dt) takes the same
+    // steps, bit for bit, however it is split into calls.
+    const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
+    if (settings_.adaptive)
+      adaptive_frame(last ? t_end : time_ + dt);
+    else
+      fixed_step(last && !whole ? remaining : dt);
+    if (last && status_ == RunStatus::ok) time_ = t_end;  // no round-off drift at the end
+  }
+  // Between energy checks, at least never hand out a NaN: a cheap test every call.
+  if (status_ == RunStatus::ok && steps_since_check_ > 0 && !front_->all_finite()) run_check();
+  return status_;
+}
+
+void Simulation::ensure_front_forces() {
+  if (front_forces_valid_) return;
+  net_.net_forces(*front_, *force_front_);
+  front_forces_valid_ = true;
+}
+
+void Simulation::accept(double h) {
+  std::swap(front_, back_);
+  time_ += h;
+  ++steps_;
+  ++steps_since_check_;
+}
+
+void Simulation::after_accept(bool force_check) {
+  if (force_check || steps_since_check_ >= settings_.divergence.check_interval) run_check();
+}
+
+void Simulation::fixed_step(double h) {
+  ensure_front_forces();
+  // A fixed step is never rejected, so an integrator that can may write over
+  // the current state (the checkpoint still guards against divergence).
+  ClothState* out = integrator_->steps_in_place() ? front_ : back_;
+  const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *out);
+  force_evaluations_ += r.force_evaluations;
+  cg_iterations_ += r.cg_iterations;
+  front_forces_valid_ = false;
+  if (out == front_) std::swap(front_, back_);  // accept() swaps back
+  accept(h);
+  after_accept(false);
+}
+
+// The paper's Table 1, with a rollback of rejected trials (the back buffer is
+// simply not swapped in), a cap on t_c from the stability bound, a floor on t_c,
+// and a tolerance on "the force grows".
+void Simulation::adaptive_frame(double frame_end) {
+  const AdaptiveSettings& A = settings_.adaptive_settings;
+  const double cap = step_cap();
+  const double floor = cap * A.min_step_fraction;
+  double tc = cap;  // Table 1: t_c := t_delta, never above the cap
+  ensure_front_forces();
+  if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
+  while (status_ == RunStatus::ok && time_ < frame_end) {
+    const double h = std::min(tc, frame_end - time_);
+    const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *back_);
+    net_.net_forces(*back_, *force_back_);
+    force_evaluations_ += r.force_evaluations + 1;
+    cg_iterations_ += r.cg_iterations;
+    const double m = net_.max_net_force(*force_back_);
+    const double allowed =
+        former_force_ + A.growth_tolerance * std::max(former_force_, force_scale_);
+    const bool grows = !(m <= allowed);  // NaN grows
+    const bool forced = grows && tc <= floor;
+    StepEvent ev{time_, tc, h, !grows || forced, forced, m, former_force_};
+    if (grows && !forced) {
+      ++rejected_;
+      tc = std::max(0.5 * tc, floor);  // Table 1: t_c := t_c * 0.5 (rollback: no swap)
+      if (observer_) observer_(ev);
+      continue;
+    }
+    accept(h);
+    std::swap(force_front_, force_back_);
+    former_force_ = m;
+    tc = std::min(2.0 * tc, cap);  // Table 1: t := t + t_c; t_c := t_c * 2
+    if (frame_end - time_ <= 1e-12 * settings_.dt) time_ = frame_end;
+    if (observer_) observer_(ev);
+    after_accept(!std::isfinite(m));
+  }
+}
+
+RunStatus Simulation::check_now() {
+  if (status_ == RunStatus::ok && steps_since_check_ > 0) run_check();
+  return status_;
+}
+
+void Simulation::run_check() {
+  steps_since_check_ = 0;
+  degenerate_ = net_.degenerate_springs(*front_);
+  std::string why = monitor_.check(net_, *front_);
+  if (why.empty()) {
+    if (!monitor_.striking()) {
+      checkpoint_ = *front_;
+      checkpoint_time_ = time_;
+      checkpoint_steps_ = steps_;
+    }
+    return;
+  }
+  // Diverged: go back to the last state that passed a check.
+  *front_ = checkpoint_;
+  time_ = checkpoint_time_;
+  steps_ = checkpoint_steps_;
+  front_forces_valid_ = false;
+  former_force_ = -1;
+  status_ = RunStatus::diverged;
+  reason_ = std::move(why);
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,102 @@
+#pragma once
+// Runs a network forward in time: fixed steps or the paper's adaptive
+// propagation (Table 1), with rollback of rejected steps and divergence
+// detection that keeps the last good state. The simulation owns its state; the
+// integrator writes into a back buffer which becomes current only when the step
+// is accepted, so a rejection costs nothing to undo.
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "cloth_network.h"
+#include "divergence_monitor.h"
+#include "integrator.h"
+#include "solver_settings.h"
+
+namespace neurocloth {
+
+enum class RunStatus { ok, diverged };
+const char* to_string(RunStatus s);
+
+// One trial step of the adaptive propagation, for tests and diagnostics.
+struct StepEvent {
+  double time;  // time at the start of the trial
+  double tc;    // the time constant t_c tried
+  double step;  // the step taken (t_c clipped to the frame end)
+  bool accepted;
+  bool forced;              // accepted only because t_c was at its floor
+  double max_force;         // max |sum f| after the trial
+  double former_max_force;  // the same before it
+};
+
+class Simulation {
+ public:
+  Simulation(ClothNetwork network, ClothState initial, SolverSettings settings);
+
+  // Propagates `seconds` of simulated time (0 does nothing). Stops early, with
+  // the last good state, when the run diverges. The full check (finite state,
+  // energy within budget) runs every check_interval steps; the state returned
+  // is always finite.
+  RunStatus advance(double seconds);
+  // Runs the full divergence check now (e.g. before writing a result).
+  RunStatus check_now();
+
+  const ClothNetwork& network() const { return net_; }
+  // For parameter changes between steps; drops cached forces and step bounds.
+  ClothNetwork& mutable_network();
+  void set_external_force(std::size_t node, const Vec3& force);
+  void set_state(const ClothState& state);
+
+  const ClothState& state() const { return *front_; }
+  const SolverSettings& settings() const { return settings_; }
+  RunStatus status() const { return status_; }
+  const std::string& divergence_reason() const { return reason_; }
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  long rejected_steps() const { return rejected_; }
+  long force_evaluations() const { return force_evaluations_; }
+  long cg_iterations() const { return cg_iterations_; }
+  // Springs with no length (skipped by the force evaluation) at the last check.
+  int degenerate_springs() const { return degenerate_; }
+  // The adaptive cap on t_c (safety * stability bound, at most dt).
+  double step_cap();
+  Energy energy() const { return net_.energy(*front_); }
+
+  void set_observer(std::function<void(const StepEvent&)> observer) {
+    observer_ = std::move(observer);
+  }
+
+ private:
+  void fixed_step(double h);
+  void adaptive_frame(double frame_end);
+  void ensure_front_forces();
+  void accept(double h);
+  void after_accept(bool force_check);
+  void run_check();
+
+  ClothNetwork net_;
+  SolverSettings settings_;
+  std::unique_ptr<Integrator> integrator_;
+  ClothState a_, b_, checkpoint_;
+  ClothState* front_ = &a_;
+  ClothState* back_ = &b_;
+  NodeVectors force_a_, force_b_;
+  NodeVectors* force_front_ = &force_a_;  // net_forces(*front_) when front_forces_valid_
+  NodeVectors* force_back_ = &force_b_;
+  bool front_forces_valid_ = false;
+  int degenerate_ = 0;
+  DivergenceMonitor monitor_;
+
+  RunStatus status_ = RunStatus::ok;
+  std::string reason_;
+  double time_ = 0, checkpoint_time_ = 0;
+  long steps_ = 0, checkpoint_steps_ = 0, rejected_ = 0;
+  long force_evaluations_ = 0, cg_iterations_ = 0;
+  int steps_since_check_ = 0;
+  double cap_ = -1;           // cached step cap; < 0 means stale
+  double former_force_ = -1;  // max |sum f| at the current state; < 0 means unknown
+  double force_scale_ = 0;    // largest node weight, for the absolute growth tolerance
+  std::function<void(const StepEvent&)> observer_;
+};
+
+}  // namespace neurocloth

@@ -1,0 +1,9 @@
+#pragma once
+// Cold-path 3-vectors. Hot loops never use this type: they walk flat arrays
+// (see cloth_state.h) so that the compiler can vectorise them.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace neurocloth {
+using Vec3 = Eigen::Vector3d;
+}  // namespace neurocloth

@@ -1,0 +1,178 @@
+// The spring and mass layers against hand-computed forces and energies.
+#include "cloth_network.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "grid_builder.h"
+#include "test_support.h"
+
+namespace neurocloth {
+namespace {
+
+// Two free nodes, one spring, no gravity: a network small enough to check by hand.
+ClothNetwork two_nodes(double k, double d, double rest) {
+  ClothTopology t;
+  t.rest_positions = {Vec3(0, 0, 0), Vec3(rest, 0, 0)};
+  t.springs = {{0, 1, SpringFamily::structural}};
+  Material m;
+  m.spring_constant = k;
+  m.viscosity = d;
+  m.node_mass = 0.5;
+  ClothNetwork net = ClothNetwork::build(t, m);
+  net.gravity = Vec3::Zero();
+  return net;
+}
+
+TEST(ClothNetwork, LinearSpringForceByHand) {
+  // Rest length 1, stretched to |(2, 1, 2)| = 3: elongation 2, force k * 2 = 20 N
+  // along (2, 1, 2) / 3 on node 0, the opposite on node 1.
+  const ClothNetwork net = two_nodes(10.0, 0.0, 1.0);
+  ClothState s(2);
+  s.set_position(1, Vec3(2, 1, 2));
+  NodeVectors F(2);
+  net.net_forces(s, F);
+  EXPECT_NEAR(F.at(0).x(), 20.0 * 2 / 3, 1e-13);
+  EXPECT_NEAR(F.at(0).y(), 20.0 * 1 / 3, 1e-13);
+  EXPECT_NEAR(F.at(0).z(), 20.0 * 2 / 3, 1e-13);
+  EXPECT_NEAR((F.at(0) + F.at(1)).norm(), 0.0, 1e-14);
+}
+
+TEST(ClothNetwork, DampingActsAlongTheSpringOnly) {
+  // Spring along x at rest; node 1 moves with (3, 4, 0): only the 3 m/s along the
+  // spring is damped, force on node 0 = d * 3 = 6 N along +x.
+  const ClothNetwork net = two_nodes(10.0, 2.0, 1.0);
+  ClothState s(2);
+  s.set_position(1, Vec3(1, 0, 0));
+  s.set_velocity(1, Vec3(3, 4, 0));
+  NodeVectors F(2);
+  net.net_forces(s, F);
+  EXPECT_NEAR(F.at(0).x(), 6.0, 1e-13);
+  EXPECT_NEAR(F.at(0).y(), 0.0, 1e-13);
+  EXPECT_NEAR(F.at(1).x(), -6.0, 1e-13);
+}
+
+TEST(ClothNetwork, ZeroLengthSpringIsSkippedNotDividedBy) {
+  const ClothNetwork net = two_nodes(10.0, 1.0, 1.0);
+  ClothState s(2);  // both nodes at the origin: the spring has no direction
+  s.set_velocity(1, Vec3(1, 2, 3));
+  NodeVectors F(2);
+  net.net_forces(s, F);
+  EXPECT_TRUE(F.at(0).allFinite());
+  EXPECT_EQ(F.at(0), Vec3::Zero());
+  EXPECT_EQ(F.at(1), Vec3::Zero());
+  EXPECT_EQ(net.degenerate_springs(s), 1);
+  EXPECT_TRUE(std::isfinite(net.energy(s).total()));
+}
+
+TEST(ClothNetwork, StiffeningSpringForceIsMinusEnergyGradient) {
+  ClothNetwork net = two_nodes(100.0, 0.0, 1.0);
+  net.springs.function = {SpringFunctionKind::stiffening, 0.1, 10.0};
+  for (double len : {0.7, 1.05, 1.1 + 1e-3, 1.3, 2.0}) {
+    ClothState s(2);
+    s.set_position(1, Vec3(len, 0, 0));
+    NodeVectors F(2);
+    net.net_forces(s, F);
+    const double h = 1e-6;
+    ClothState sp = s, sm = s;
+    sp.x[1] += h;
+    sm.x[1] -= h;
+    const double dE = (net.energy(sp).spring - net.energy(sm).spring) / (2 * h);
+    EXPECT_NEAR(F.at(1).x(), -dE, 1e-6 * std::max(1.0, std::abs(dE))) << "length " << len;
+  }
+  // Beyond 10% strain the spring is 10 times stiffer: at strain 0.3,
+  // force = k (0.3 + 9 * 0.2) = 210 N.
+  ClothState s(2);
+  s.set_position(1, Vec3(1.3, 0, 0));
+  NodeVectors F(2);
+  net.net_forces(s, F);
+  EXPECT_NEAR(F.at(0).x(), 210.0, 1e-9);
+}
+
+TEST(ClothNetwork, ExternalForceAndGravityReachTheAcceleration) {
+  ClothNetwork net = two_nodes(0.0, 0.0, 1.0);
+  net.gravity = Vec3(0, -10, 0);
+  net.masses.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
+  net.set_pinned(0, true);
+  ClothState s(2);
+  s.set_position(1, Vec3(1, 0, 0));
+  NodeVectors F(2), a(2);
+  net.net_forces(s, F);
+  net.accelerations(F, a);
+  EXPECT_EQ(a.at(0), Vec3::Zero());  // pinned
+  EXPECT_NEAR(a.at(1).x(), 6.0, 1e-14);
+  EXPECT_NEAR(a.at(1).y(), -10.0, 1e-14);
+}
+
+TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
+  // Newton's third law through the +-1 incidence weights, on a real cloth in a
+  // random configuration (exercises both the direct and the two-pass chunks).
+  Scene scene = test::asset_scene("free_cloth");
+  const ClothNetwork net = scene.build_network();
+  ClothState s = scene.initial_state();
+  unsigned seed = 7;
+  auto rnd = [&seed] {
+    seed = seed * 1103515245u + 12345u;
+    return ((seed >> 8) % 2001) / 1000.0 - 1.0;
+  };
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    s.set_position(i, s.position(i) + 0.01 * Vec3(rnd(), rnd(), rnd()));
+    s.set_velocity(i, Vec3(rnd(), rnd(), rnd()));
+  }
+  NodeVectors F(s.size());
+  net.net_forces(s, F);
+  Vec3 sum = Vec3::Zero();
+  double scale = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    sum += F.at(i);
+    scale += F.at(i).norm();
+  }
+  EXPECT_LT(sum.norm(), 1e-13 * scale);
+
+  // The same forces, summed by hand from the per-spring outputs.
+  SpringActivations act;
+  net.spring_outputs(s, act);
+  std::vector<Vec3> by_hand(s.size(), Vec3::Zero());
+  for (std::size_t k = 0; k < net.spring_count(); ++k) {
+    const Vec3 f(act.fx[k], act.fy[k], act.fz[k]);
+    by_hand[net.springs.node_a[k]] += f;
+    by_hand[net.springs.node_b[k]] -= f;
+  }
+  for (std::size_t i = 0; i < s.size(); ++i)
+    EXPECT_LT((by_hand[i] - F.at(i)).norm(), 1e-12 * scale) << i;
+}
+
+TEST(ClothNetwork, WeightsArePerSpringAndPerNodeAndWritable) {
+  Scene scene = test::asset_scene("hanging");
+  ClothNetwork net = scene.build_network();
+  ASSERT_EQ(net.springs.stiffness.size(), net.spring_count());
+  ASSERT_EQ(net.springs.damping.size(), net.spring_count());
+  ASSERT_EQ(net.masses.inverse_mass.size(), net.node_count());
+  EXPECT_DOUBLE_EQ(net.masses.inverse_mass[5], 1.0 / 0.01);
+  // Doubling one spring's stiffness weight doubles that spring's force only.
+  ClothState s = scene.initial_state();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    s.y[i] -= 0.001 * static_cast<double>(i % 7);
+  SpringActivations before, after;
+  net.spring_outputs(s, before);
+  net.springs.stiffness[3] *= 2.0;
+  net.spring_outputs(s, after);
+  EXPECT_NEAR(after.fy[3], 2.0 * before.fy[3], 1e-12 * std::abs(before.fy[3]) + 1e-15);
+  EXPECT_EQ(after.fy[4], before.fy[4]);
+}
+
+TEST(ClothNetwork, EnergyByHand) {
+  ClothNetwork net = two_nodes(10.0, 0.0, 1.0);
+  net.gravity = Vec3(0, -10, 0);
+  ClothState s(2);
+  s.set_position(1, Vec3(3, 2, 0));  // length sqrt(13)
+  s.set_velocity(0, Vec3(1, 0, 0));
+  const Energy e = net.energy(s);
+  EXPECT_NEAR(e.kinetic, 0.5 * 0.5 * 1.0, 1e-15);
+  EXPECT_NEAR(e.spring, 0.5 * 10.0 * std::pow(std::sqrt(13.0) - 1.0, 2), 1e-12);
+  EXPECT_NEAR(e.gravity, 0.5 * 10.0 * 2.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace neurocloth

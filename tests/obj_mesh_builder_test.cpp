@@ -1,0 +1,221 @@
+#include "obj_mesh_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "input_error.h"
+#include "scene.h"
+
+namespace neurocloth {
+namespace {
+namespace fs = std::filesystem;
+
+using Edge = std::pair<int, int>;
+
+std::string square_obj() {
+  return assets_directory() + "/meshes/square.obj";
+}
+
+// Writes `text` to a file in this test's scratch folder and returns its path.
+std::string temp_obj(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "obj_mesh_builder_test";
+  fs::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+  return path;
+}
+
+std::set<Edge> springs_of(const ClothTopology& t, SpringFamily family) {
+  std::set<Edge> s;
+  for (const auto& spring : t.springs)
+    if (spring.family == family)
+      s.insert({std::min(spring.a, spring.b), std::max(spring.a, spring.b)});
+  return s;
+}
+
+int count(const ClothTopology& t, SpringFamily family) {
+  int n = 0;
+  for (const auto& s : t.springs)
+    n += s.family == family;
+  return n;
+}
+
+ClothTopology build(const std::string& path, double scale = 1.0,
+                    const Vec3& translate = Vec3::Zero(), bool bend = true) {
+  ObjMeshSpec spec;
+  spec.path = path;
+  spec.scale = scale;
+  spec.translate = translate;
+  spec.bend = bend;
+  return build_obj_mesh(spec);
+}
+
+std::optional<InputError> build_error(const std::string& path) {
+  try {
+    build(path);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << path << " was accepted";
+  return std::nullopt;
+}
+
+// square.obj: vertices 1..9 (1-based, as in the file) form a 3 x 3 grid,
+// row by row along x, rows along z; 8 triangles (two per quad, split along
+// the 2-4, 3-5, 5-7 and 6-8 diagonals).
+TEST(ObjMesh, SquareHasNineNodesAndSixteenEdges) {
+  const ClothTopology t = build(square_obj());
+  EXPECT_EQ(t.rest_positions.size(), 9u);
+  EXPECT_EQ(t.triangles.size(), 8u);
+  EXPECT_EQ(t.rows, 0);  // not a grid: pins are node indices
+  EXPECT_EQ(count(t, SpringFamily::structural), 16);
+  EXPECT_EQ(count(t, SpringFamily::shear), 0);
+  // 0-based: 6 along x, 6 along z, 4 diagonals. No edge twice.
+  const std::set<Edge> expected = {{0, 1}, {1, 2}, {3, 4}, {4, 5}, {6, 7}, {7, 8}, {0, 3}, {3, 6},
+                                   {1, 4}, {4, 7}, {2, 5}, {5, 8}, {1, 3}, {2, 4}, {4, 6}, {5, 7}};
+  EXPECT_EQ(springs_of(t, SpringFamily::structural), expected);
+}
+
+TEST(ObjMesh, SquareHasOneBendSpringPerInteriorEdge) {
+  const ClothTopology t = build(square_obj());
+  // 16 edges, 8 on the boundary: 8 interior edges, each shared by two triangles.
+  EXPECT_EQ(count(t, SpringFamily::bend), 8);
+  EXPECT_EQ(t.springs.size(), 24u);
+  // By hand (1-based): edge 2-4 is in "f 1 4 2" and "f 2 4 5", whose third
+  // vertices are 1 and 5, so the bend spring joins the corner to the centre.
+  const std::set<Edge> bends = springs_of(t, SpringFamily::bend);
+  EXPECT_EQ(bends.count({0, 4}), 1u);
+  // The rest of them, worked out the same way per interior edge:
+  // 2-5 -> 4,3; 3-5 -> 2,6; 4-5 -> 2,7; 5-6 -> 3,8; 5-7 -> 4,8; 5-8 -> 7,6; 6-8 -> 5,9.
+  const std::set<Edge> expected = {{0, 4}, {2, 3}, {1, 5}, {1, 6}, {2, 7}, {3, 7}, {5, 6}, {4, 8}};
+  EXPECT_EQ(bends, expected);
+}
+
+TEST(ObjMesh, BendSpringsAreOptional) {
+  const ClothTopology t = build(square_obj(), 1.0, Vec3::Zero(), /*bend=*/false);
+  EXPECT_EQ(count(t, SpringFamily::bend), 0);
+  EXPECT_EQ(count(t, SpringFamily::structural), 16);
+}
+
+TEST(ObjMesh, ReadsVertexPositions) {
+  const ClothTopology t = build(square_obj());
+  // Vertex 5 (index 4) is the centre, vertex 6 (index 5) the middle of the x = 1 side.
+  EXPECT_EQ(t.rest_positions[4], Vec3(0.5, 0, 0.5));
+  EXPECT_EQ(t.rest_positions[5], Vec3(1, 0, 0.5));
+}
+
+TEST(ObjMesh, ScaleThenTranslate) {
+  const ClothTopology t = build(square_obj(), 2.0, Vec3(1, 2, 3));
+  // p' = scale * p + translate.
+  EXPECT_EQ(t.rest_positions[0], Vec3(1, 2, 3));
+  EXPECT_EQ(t.rest_positions[4], Vec3(2, 2, 4));
+  EXPECT_EQ(t.rest_positions[8], Vec3(3, 2, 5));
+}
+
+TEST(ObjMesh, QuadIsTriangulated) {
+  const std::string path = temp_obj("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const ClothTopology t = build(path);
+  EXPECT_EQ(t.rest_positions.size(), 4u);
+  EXPECT_EQ(t.triangles.size(), 2u);
+  EXPECT_EQ(count(t, SpringFamily::structural), 5);  // 4 sides + the diagonal
+  ASSERT_EQ(count(t, SpringFamily::bend), 1);
+  // The bend spring crosses the diagonal: it joins the two corners the diagonal does not.
+  const std::set<Edge> structural = springs_of(t, SpringFamily::structural);
+  const Edge bend = *springs_of(t, SpringFamily::bend).begin();
+  EXPECT_EQ(structural.count(bend), 0u);
+  for (const Edge& diagonal : {Edge{0, 2}, Edge{1, 3}}) {
+    if (structural.count(diagonal) == 0) continue;
+    EXPECT_EQ(bend, (diagonal == Edge{0, 2} ? Edge{1, 3} : Edge{0, 2}));
+  }
+}
+
+TEST(ObjMesh, NegativeIndicesCountFromTheEnd) {
+  const std::string path = temp_obj("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
+  const ClothTopology t = build(path);
+  ASSERT_EQ(t.triangles.size(), 1u);
+  EXPECT_EQ(t.triangles[0], (std::array<std::int32_t, 3>{0, 1, 2}));
+}
+
+TEST(ObjMesh, UnreadableFileNamesThePath) {
+  const std::string path = (fs::path(NEUROCLOTH_TEST_TMP) / "no_such_file.obj").string();
+  fs::remove(path);
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_NE(std::string(e->what()).find(path), std::string::npos) << e->what();
+}
+
+TEST(ObjMesh, FaceReferringToMissingVertex) {
+  const std::string path = temp_obj("vertex99.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->field(), "f");
+  const std::string what = e->what();
+  EXPECT_NE(what.find(path), std::string::npos) << what;
+  EXPECT_NE(what.find("99"), std::string::npos) << what;
+  EXPECT_NE(what.find("has 3"), std::string::npos) << what;
+}
+
+TEST(ObjMesh, NegativeIndexBeforeTheFirstVertex) {
+  const std::string path = temp_obj("relative_bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -9\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->field(), "f");
+}
+
+TEST(ObjMesh, ZeroIndexIsAParseErrorWithALine) {
+  // OBJ indices start at 1; the parser rejects 0 and says on which line.
+  const std::string path = temp_obj("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->line(), 4);
+  EXPECT_NE(std::string(e->what()).find(path + ":4:"), std::string::npos) << e->what();
+}
+
+TEST(ObjMesh, NoFaces) {
+  const std::string path = temp_obj("no_faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->field(), "f");
+  EXPECT_NE(std::string(e->what()).find("no faces"), std::string::npos) << e->what();
+}
+
+TEST(ObjMesh, EmptyFile) {
+  const std::string path = temp_obj("empty.obj", "");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+}
+
+TEST(ObjMesh, DegenerateFace) {
+  const std::string path = temp_obj("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->field(), "f");
+  EXPECT_NE(std::string(e->what()).find("degenerate"), std::string::npos) << e->what();
+}
+
+TEST(ObjMesh, NonFiniteVertex) {
+  const std::string path = temp_obj("huge.obj", "v 1e999 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto e = build_error(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), path);
+  EXPECT_EQ(e->field(), "v");
+}
+
+}  // namespace
+}  // namespace neurocloth
