@@ -25,11 +25,17 @@ std::string square_obj() {
   return assets_directory() + "/meshes/square.obj";
 }
 
-// Writes `text` to a file in this test's scratch folder and returns its path.
-std::string temp_obj(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "obj_mesh_builder_test";
+// This test's own scratch folder: ctest runs tests in parallel.
+fs::path scratch() {
+  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "obj_mesh_builder_test" /
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
   fs::create_directories(dir);
-  const std::string path = (dir / name).string();
+  return dir;
+}
+
+// Writes `text` to a file in the scratch folder and returns its path.
+std::string temp_obj(const std::string& name, const std::string& text) {
+  const std::string path = (scratch() / name).string();
   std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
   return path;
 }
@@ -146,7 +152,7 @@ TEST(ObjMesh, NegativeIndicesCountFromTheEnd) {
 }
 
 TEST(ObjMesh, UnreadableFileNamesThePath) {
-  const std::string path = (fs::path(NEUROCLOTH_TEST_TMP) / "no_such_file.obj").string();
+  const std::string path = (scratch() / "no_such_file.obj").string();
   fs::remove(path);
   const auto e = build_error(path);
   ASSERT_TRUE(e);

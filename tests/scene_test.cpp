@@ -17,8 +17,11 @@ namespace fs = std::filesystem;
 
 // Every error message is checked against a path that only exists in this test's
 // scratch folder, so a message that names some other file cannot pass by accident.
+// One folder per test: ctest runs tests in parallel, and two writing one file race.
 fs::path scratch() {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "scene_test";
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir =
+      fs::path(NEUROCLOTH_TEST_TMP) / "scene_test" / test->test_suite_name() / test->name();
   fs::create_directories(dir);
   return dir;
 }

@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -10,7 +11,8 @@
 namespace neurocloth {
 
 int run_simulate(const SimulateOptions& o) {
-  if (!(o.seconds >= 0)) throw InputError("command line", "--seconds", "must be >= 0");
+  if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
+    throw InputError("command line", "--seconds", "must be a finite number >= 0");
   Scene scene = load_scene(o.scene);
   if (o.integrator) {
     const auto kind = parse_integrator(*o.integrator);
@@ -21,7 +23,8 @@ int run_simulate(const SimulateOptions& o) {
     scene.solver.integrator = *kind;
   }
   if (o.dt) {
-    if (!(*o.dt > 0)) throw InputError("command line", "--dt", "must be > 0");
+    if (!(*o.dt > 0) || !std::isfinite(*o.dt))
+      throw InputError("command line", "--dt", "must be a finite number > 0");
     scene.solver.dt = *o.dt;
   }
   if (o.adaptive) scene.solver.adaptive = true;

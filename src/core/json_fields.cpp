@@ -6,7 +6,44 @@
 namespace neurocloth {
 namespace {
 
+// Scenes are a few levels deep; anything deeper than this is not a scene, and
+// refusing it up front bounds the recursion of JsonLocator and of our readers.
+constexpr int kMaxDepth = 64;
+
+// Finds the first place nesting exceeds kMaxDepth (outside strings); {0, 0} if none.
+std::pair<int, int> too_deep(const std::string& text) {
+  int depth = 0, line = 1, column = 1;
+  bool in_string = false, escaped = false;
+  for (char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth) return {line, column};
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {0, 0};
+}
+
 nlohmann::json parse_or_throw(const std::string& text, const std::string& file) {
+  const auto [deep_line, deep_column] = too_deep(text);
+  if (deep_line > 0)
+    throw InputError(file, "", "nested deeper than " + std::to_string(kMaxDepth) + " levels",
+                     deep_line, deep_column);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -21,6 +58,13 @@ nlohmann::json parse_or_throw(const std::string& text, const std::string& file) 
     const auto colon = what.find(": ", what.find("column"));
     const std::string detail = colon == std::string::npos ? what : what.substr(colon + 2);
     throw InputError(file, "", "malformed JSON: " + detail, line, column);
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. out_of_range for a number too large for a double ("1e400"); no position given.
+    const std::string what = e.what();
+    const auto bracket = what.find("] ");
+    throw InputError(
+        file, "",
+        "bad JSON value: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
   }
 }
 
@@ -73,6 +117,8 @@ double JsonFields::number(const nlohmann::json& v, const std::string& field) con
 
 int JsonFields::integer(const nlohmann::json& v, const std::string& field) const {
   if (!v.is_number_integer()) fail(field, std::string("expected an integer, got ") + type_name(v));
+  if (v.is_number_unsigned() && v.get<unsigned long long>() > 2147483647ULL)
+    fail(field, "integer out of range");
   const auto i = v.get<long long>();
   if (i < -2147483647LL || i > 2147483647LL) fail(field, "integer out of range");
   return static_cast<int>(i);

@@ -1,10 +1,14 @@
 #include "json_locator.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cctype>
 
 namespace neurocloth {
 
 JsonLocator::JsonLocator(const std::string& text) : text_(text) {
+  // nlohmann skips a UTF-8 byte-order mark; so must we (it takes no column).
+  if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
   skip_space();
   if (pos_ < text_.size()) value("");
 }
@@ -31,19 +35,20 @@ void JsonLocator::skip_space() {
 }
 
 std::string JsonLocator::string_token() {
-  std::string s;
+  // Skip to the closing quote, then let nlohmann decode the escapes (\uXXXX,
+  // \t, ...) so that keys match the parsed document's keys exactly.
+  const std::size_t start = pos_;
   advance();  // opening quote
   while (pos_ < text_.size() && peek() != '"') {
-    if (peek() == '\\') {
-      advance();
-      s += peek();
-    } else {
-      s += peek();
-    }
+    if (peek() == '\\') advance();
     advance();
   }
   advance();  // closing quote
-  return s;
+  try {
+    return nlohmann::json::parse(text_.substr(start, pos_ - start)).get<std::string>();
+  } catch (const nlohmann::json::exception&) {
+    return {};  // unreachable for text nlohmann accepted
+  }
 }
 
 void JsonLocator::value(const std::string& field) {

@@ -91,7 +91,14 @@ ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFami
   if (in.has(mesh, "translate"))
     spec.translate = in.vec3(mesh.at("translate"), field + ".translate");
   spec.bend = families.bend;
-  ClothTopology t = build_obj_mesh(spec);  // throws InputError naming the OBJ file
+  ClothTopology t;
+  try {
+    t = build_obj_mesh(spec);
+  } catch (const InputError& e) {  // name the OBJ (where the problem is) and who loaded it
+    throw InputError(e.file(), e.field(),
+                     e.message() + " (loaded by " + in.file() + ", field '" + field + ".obj')",
+                     e.line(), e.column());
+  }
   if (!families.structural) {
     t.springs.erase(
         std::remove_if(t.springs.begin(), t.springs.end(),
