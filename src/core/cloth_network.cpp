@@ -126,22 +126,34 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
 }
 
 // Acceleration neurons: add each force neuron's output with weight +1 at n_i1
-// and -1 at n_i2. Separate contiguous passes for the two ends, so no two writes
-// in one loop can hit the same node.
+// and -1 at n_i2, in passes where no two writes of one loop hit the same node.
 void accumulate_chunk(std::int32_t count, std::int32_t a, std::int32_t b, const double* fx,
                       const double* fy, const double* fz, NodeVectors& F) {
   const double* const src[3] = {fx, fy, fz};
   double* const dst[3] = {F.x.data(), F.y.data(), F.z.data()};
+  const std::int32_t o = b - a;
   for (int c = 0; c < 3; ++c) {
     const double* f = src[c];
-    double* to_a = dst[c] + a;
+    double* to = dst[c] + a;
+    if (o > 0 && o < count) {
+      // Overlapping ends (a row's neighbours, o = 1 or 2): node a+j receives
+      // +f[j] and -f[j-o], so one pass over the nodes does both ends.
+      for (std::int32_t j = 0; j < o; ++j)
+        to[j] += f[j];
 #pragma GCC ivdep
-    for (std::int32_t k = 0; k < count; ++k)
-      to_a[k] += f[k];
-    double* to_b = dst[c] + b;
+      for (std::int32_t j = o; j < count; ++j)
+        to[j] += f[j] - f[j - o];
+      for (std::int32_t j = count; j < count + o; ++j)
+        to[j] -= f[j - o];
+    } else {
 #pragma GCC ivdep
-    for (std::int32_t k = 0; k < count; ++k)
-      to_b[k] -= f[k];
+      for (std::int32_t k = 0; k < count; ++k)
+        to[k] += f[k];
+      double* to_b = dst[c] + b;
+#pragma GCC ivdep
+      for (std::int32_t k = 0; k < count; ++k)
+        to_b[k] -= f[k];
+    }
   }
 }
 

@@ -24,4 +24,15 @@ InputError::InputError(std::string file, std::string field, std::string message,
       line_(line),
       column_(column) {}
 
+int number_after(const std::string& text, const std::string& word) {
+  const auto at = text.find(word);
+  if (at == std::string::npos) return 0;
+  int n = 0;
+  for (std::size_t i = at + word.size(); i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+    if (n > 100000000) return 0;
+    n = n * 10 + (text[i] - '0');
+  }
+  return n;
+}
+
 }  // namespace neurocloth

@@ -23,4 +23,8 @@ class InputError : public std::runtime_error {
   int line_, column_;
 };
 
+// The number after the first occurrence of `word` in `text` ("line 12" -> 12),
+// or 0. Parsers report positions inside their messages; this fishes them out.
+int number_after(const std::string& text, const std::string& word);
+
 }  // namespace neurocloth

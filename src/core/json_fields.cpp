@@ -1,7 +1,6 @@
 #include "json_fields.h"
 
 #include <cmath>
-#include <regex>
 
 namespace neurocloth {
 namespace {
@@ -49,12 +48,7 @@ nlohmann::json parse_or_throw(const std::string& text, const std::string& file) 
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann says "... at line L, column C: <what>"; keep the part after the position.
     const std::string what = e.what();
-    std::smatch m;
-    int line = 0, column = 0;
-    if (std::regex_search(what, m, std::regex("line ([0-9]+), column ([0-9]+)"))) {
-      line = std::stoi(m[1].str());
-      column = std::stoi(m[2].str());
-    }
+    const int line = number_after(what, "line "), column = number_after(what, "column ");
     const auto colon = what.find(": ", what.find("column"));
     const std::string detail = colon == std::string::npos ? what : what.substr(colon + 2);
     throw InputError(file, "", "malformed JSON: " + detail, line, column);

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <utility>
 
 #include "input_error.h"
@@ -16,10 +15,7 @@ namespace {
 
 // tinyobjloader reports some problems as "... line N ..." inside its message.
 int line_from_message(const std::string& msg) {
-  static const std::regex re("line ([0-9]+)");
-  std::smatch m;
-  if (std::regex_search(msg, m, re)) return std::stoi(m[1].str());
-  return 0;
+  return number_after(msg, "line ");
 }
 
 std::string first_line(std::string s) {
