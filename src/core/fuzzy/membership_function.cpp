@@ -10,30 +10,47 @@ namespace neurocloth::fuzzy {
 
 const char* to_string(Shape s) {
   switch (s) {
-    case Shape::points: return "points";
-    case Shape::triangle: return "trian";
-    case Shape::trapezoid: return "trape";
-    case Shape::gaussian: return "gauss";
-    case Shape::bell: return "gbell";
-    case Shape::sigmoid: return "sigm";
-    case Shape::singleton: return "singleton";
-    case Shape::linear: return "linear";
+    case Shape::points:
+      return "points";
+    case Shape::triangle:
+      return "trian";
+    case Shape::trapezoid:
+      return "trape";
+    case Shape::gaussian:
+      return "gauss";
+    case Shape::bell:
+      return "gbell";
+    case Shape::sigmoid:
+      return "sigm";
+    case Shape::singleton:
+      return "singleton";
+    case Shape::linear:
+      return "linear";
   }
   return "?";
 }
 
-const char* to_string(Hedge h) { return h == Hedge::very ? "very" : "somewhat"; }
+const char* to_string(Hedge h) {
+  return h == Hedge::very ? "very" : "somewhat";
+}
 
 int parameter_count(Shape s) {
   switch (s) {
-    case Shape::triangle: return 3;
-    case Shape::trapezoid: return 4;
-    case Shape::gaussian: return 2;
-    case Shape::bell: return 3;
-    case Shape::sigmoid: return 2;
-    case Shape::singleton: return 1;
+    case Shape::triangle:
+      return 3;
+    case Shape::trapezoid:
+      return 4;
+    case Shape::gaussian:
+      return 2;
+    case Shape::bell:
+      return 3;
+    case Shape::sigmoid:
+      return 2;
+    case Shape::singleton:
+      return 1;
     case Shape::points:
-    case Shape::linear: return -1;
+    case Shape::linear:
+      return -1;
   }
   return -1;
 }
@@ -41,13 +58,16 @@ int parameter_count(Shape s) {
 std::vector<double> MembershipFunction::breakpoints() const {
   switch (shape) {
     case Shape::triangle:
-    case Shape::trapezoid: return params;
+    case Shape::trapezoid:
+      return params;
     case Shape::points: {
       std::vector<double> xs;
-      for (std::size_t i = 0; i + 1 < params.size(); i += 2) xs.push_back(params[i]);
+      for (std::size_t i = 0; i + 1 < params.size(); i += 2)
+        xs.push_back(params[i]);
       return xs;
     }
-    default: return {};
+    default:
+      return {};
   }
 }
 
@@ -72,10 +92,14 @@ std::string MembershipFunction::validate() const {
       return params[0] <= params[1] && params[1] <= params[2] && params[2] <= params[3]
                  ? ""
                  : "trape needs a <= b <= c <= d";
-    case Shape::gaussian: return params[1] > 0 ? "" : "gauss needs sigma > 0";
-    case Shape::bell: return params[0] != 0 && params[1] > 0 ? "" : "gbell needs a != 0 and b > 0";
-    case Shape::linear: return params.empty() ? "linear needs at least a constant" : "";
-    default: return {};
+    case Shape::gaussian:
+      return params[1] > 0 ? "" : "gauss needs sigma > 0";
+    case Shape::bell:
+      return params[0] != 0 && params[1] > 0 ? "" : "gbell needs a != 0 and b > 0";
+    case Shape::linear:
+      return params.empty() ? "linear needs at least a constant" : "";
+    default:
+      return {};
   }
 }
 
@@ -99,9 +123,9 @@ T fall(const T& x, const T& c, const T& d) {
 
 template <class T>
 T MembershipFunction::membership(const T& x, const T* p) const {
+  using std::abs;
   using std::exp;
   using std::pow;
-  using std::abs;
   switch (shape) {
     case Shape::triangle: {
       if (x < p[1]) return rise(x, p[0], p[1]);
@@ -133,9 +157,12 @@ T MembershipFunction::membership(const T& x, const T* p) const {
       const T z = abs((x - p[2]) / p[0]);
       return T(1.0) / (T(1.0) + pow(z, T(2.0) * p[1]));
     }
-    case Shape::sigmoid: return T(1.0) / (T(1.0) + exp(-(p[0] * (x - p[1]))));
-    case Shape::singleton: return value(x) == value(p[0]) ? T(1.0) : T(0.0);
-    case Shape::linear: return T(0.0);  // not a membership function (see inference)
+    case Shape::sigmoid:
+      return T(1.0) / (T(1.0) + exp(-(p[0] * (x - p[1]))));
+    case Shape::singleton:
+      return value(x) == value(p[0]) ? T(1.0) : T(0.0);
+    case Shape::linear:
+      return T(0.0);  // not a membership function (see inference)
   }
   return T(0.0);
 }

@@ -8,7 +8,7 @@
 namespace neurocloth::fuzzy {
 
 enum class Shape {
-  points,     // x0 y0 x1 y1 ... : piecewise linear through the points (x ascending), constant outside
+  points,  // x0 y0 x1 y1 ... : piecewise linear through the points (x ascending), constant outside
   triangle,   // a b c           : 0 at a, 1 at b, 0 at c
   trapezoid,  // a b c d         : 0 at a, 1 on [b, c], 0 at d
   gaussian,   // mean sigma      : exp(-(x - mean)^2 / (2 sigma^2))
