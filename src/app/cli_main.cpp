@@ -40,6 +40,21 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--integrator", bench.integrator, "Integrator to time");
   bench_cmd->add_flag("--json", bench.json, "Print JSON");
 
+  MaterialOptions mat;
+  auto* material =
+      app.add_subcommand("material", "Derive material parameters from linguistic inputs");
+  auto* rules = material->add_option("--rules", mat.rules, "Rule base (FCL)");
+  auto* inputs =
+      material->add_option("--input", mat.inputs, "NAME=VALUE, one per input")->expected(1, -1);
+  auto* preset =
+      material->add_option("--preset", mat.preset, "A shipped preset (assets/materials/NAME.json)");
+  preset->excludes(rules)->excludes(inputs);
+  rules->needs(inputs);
+  material->add_flag("--json", mat.json, "Print JSON");
+  material->callback([&] {
+    if (mat.rules.empty() && !mat.preset) throw CLI::RequiredError("--rules or --preset");
+  });
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -50,6 +65,7 @@ int main(int argc, char** argv) {
     if (*simulate) return run_simulate(sim);
     if (*relax) return run_relax(rel);
     if (*bench_cmd) return run_bench(bench);
+    if (*material) return run_material(mat);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitInputError;

@@ -4,6 +4,7 @@
 // written), 1 bad input (nothing written).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "integrator.h"
 
@@ -40,5 +41,13 @@ struct BenchOptions {
   bool json = false;
 };
 int run_bench(const BenchOptions& options);
+
+struct MaterialOptions {
+  std::string rules;                  // --rules FILE.fcl
+  std::vector<std::string> inputs;    // --input NAME=VALUE ...
+  std::optional<std::string> preset;  // --preset NAME
+  bool json = false;
+};
+int run_material(const MaterialOptions& options);
 
 }  // namespace neurocloth

@@ -12,7 +12,7 @@ ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
     v->assign(dofs, 0.0);
 }
 
-void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s) {
+void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, bool exact_hessian) {
   const SpringLayer& L = net.springs;
   for (std::size_t i = 0; i < L.size(); ++i) {
     const Vec3 d = s.position(L.node_b[i]) - s.position(L.node_a[i]);
@@ -27,8 +27,8 @@ void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s) {
     const Vec3 n = d / len;
     const double e = len - L.rest_length[i];
     const double axial = L.stiffness[i] * L.function.slope(e, L.rest_length[i]);
-    const double transverse =
-        std::max(0.0, L.stiffness[i] * L.function.force(e, L.rest_length[i]) / len);
+    const double tension = L.stiffness[i] * L.function.force(e, L.rest_length[i]) / len;
+    const double transverse = exact_hessian ? tension : std::max(0.0, tension);
     // K = axial n n^T + transverse (I - n n^T)
     const double a = axial - transverse;
     K[0] = a * n.x() * n.x() + transverse;
@@ -133,7 +133,9 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
   while (r_norm > tolerance * b_norm && it < max_iterations) {
     apply(net, alpha, beta, gamma, p_, q_);
     const double pq = dot(p_, q_);
-    if (!(pq > 0.0)) break;  // lost positive definiteness (or NaN): stop, report
+    // Negative curvature (an indefinite system, or NaN): stop with the iterate
+    // so far, which is still a descent direction for a relaxation (Steihaug).
+    if (!(pq > 0.0)) break;
     const double step = rz / pq;
     for (std::size_t i = 0; i < x.size(); ++i) {
       x[i] += step * p_[i];

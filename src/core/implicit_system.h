@@ -25,7 +25,10 @@ class ImplicitSystem {
   // is negative; it is dropped so that K stays positive semi-definite (the
   // standard remedy since Baraff & Witkin; it removes the buckling instability from
   // the linear solve, not from the dynamics).
-  void linearise(const ClothNetwork& net, const ClothState& state);
+  // exact_hessian keeps that negative part (relaxation: at a minimum the true
+  // Hessian is positive semi-definite, and keeping it restores Newton's
+  // quadratic convergence on a sagging cloth).
+  void linearise(const ClothNetwork& net, const ClothState& state, bool exact_hessian = false);
 
   // y = alpha M u + beta D u + gamma K u on free nodes, 0 on pinned ones.
   // Vectors are 3N, interleaved (x0 y0 z0 x1 ...).

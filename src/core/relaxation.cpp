@@ -66,7 +66,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
       break;
     }
     report.iterations = it + 1;
-    system.linearise(net, state);
+    system.linearise(net, state, /*exact_hessian=*/true);
     std::fill(dx.begin(), dx.end(), 0.0);
     const CgResult cg = system.solve(net, mu, 0.0, 1.0, f, dx, settings.cg_tolerance,
                                      static_cast<int>(std::max<std::size_t>(200, 6 * n)));
@@ -80,7 +80,10 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
     }
     const double trial_energy = potential(net, trial);
     // Accept when the energy does not rise beyond round-off.
-    if (std::isfinite(trial_energy) && trial_energy <= energy + 1e-13 * std::abs(energy)) {
+    // (A zero step — CG met negative curvature at once — is no progress: more
+    // regularisation, like a rise.)
+    if (step > 0 && std::isfinite(trial_energy) &&
+        trial_energy <= energy + 1e-13 * std::abs(energy)) {
       state = trial;
       energy = trial_energy;
       report.last_step = step;

@@ -6,7 +6,10 @@
 //   (K + mu M) dx = F(x),  mu = 1/h^2;  accept if E(x + dx) <= E(x), then mu /= 4,
 //   else mu *= 8.
 // Near the minimum mu -> 0 and convergence is quadratic, which is what lets the
-// static drape be converged to 1e-9 m instead of "until it looks still".
+// static drape be converged to 1e-9 m instead of "until it looks still". The
+// Hessian is the exact one (compressed springs included), so CG may meet
+// negative curvature far from the minimum: it then stops early (Steihaug) and
+// the line search and mu take care of the rest.
 #include "cloth_network.h"
 
 namespace neurocloth {

@@ -6,8 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "fuzzy_material.h"
 #include "grid_builder.h"
 #include "json_fields.h"
+#include "linguistic_material_json.h"
 #include "obj_mesh_builder.h"
 
 namespace neurocloth {
@@ -15,17 +17,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// Resolves a path from a scene: relative to the scene's folder, then to assets/.
-std::string resolve(const std::string& scene_path, const std::string& relative) {
-  const fs::path p(relative);
-  if (p.is_absolute()) return relative;
-  const fs::path beside = fs::path(scene_path).parent_path() / p;
-  if (fs::exists(beside)) return beside.string();
-  const fs::path in_assets = fs::path(assets_directory()) / p;
-  if (fs::exists(in_assets)) return in_assets.string();
-  return beside.string();  // the error will name the path tried first
-}
 
 SpringFamilies read_families(const JsonFields& in, const json& cloth, bool mesh) {
   SpringFamilies f{false, false, false};
@@ -83,7 +74,7 @@ ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFami
   const std::string field = "cloth.mesh";
   in.allow_only(mesh, field, {"obj", "scale", "translate"});
   ObjMeshSpec spec;
-  spec.path = resolve(in.file(), in.string(in.member(mesh, field, "obj"), field + ".obj"));
+  spec.path = resolve_path(in.file(), in.string(in.member(mesh, field, "obj"), field + ".obj"));
   if (in.has(mesh, "scale")) {
     spec.scale = in.number(mesh.at("scale"), field + ".scale");
     if (!(spec.scale > 0)) in.fail(field + ".scale", "must be > 0");
@@ -159,9 +150,28 @@ SpringFunction read_spring_function(const JsonFields& in, const json& cloth) {
   return fn;
 }
 
-Material read_material(const JsonFields& in, const json& root) {
+Material read_material(const JsonFields& in, const json& root,
+                       std::optional<Scene::FuzzySource>& fuzzy) {
   const std::string field = "material";
   const json& m = in.member(root, "", "material");
+  // A linguistic material: a preset's, or rules and inputs given here.
+  if (in.has(m, "preset") || in.has(m, "rules")) {
+    LinguisticMaterial lm;
+    if (in.has(m, "preset")) {
+      in.allow_only(m, field, {"preset"});
+      try {
+        lm = load_preset(in.string(m.at("preset"), field + ".preset"));
+      } catch (const InputError& e) {
+        in.fail(field + ".preset", e.what());
+      }
+    } else {
+      lm = read_linguistic_material(in, m, field);
+    }
+    const DerivedMaterial d =
+        FuzzyMaterial::load(lm.rules_path).derive(lm.inputs, lm.source, lm.inputs_field);
+    fuzzy = Scene::FuzzySource{lm.rules_path, lm.inputs, d.report.notes};
+    return d.material;
+  }
   in.allow_only(
       m, field,
       {"spring_constant", "shear_constant", "bend_constant", "node_mass", "viscosity", "friction"});
@@ -248,7 +258,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   }
   scene.pins = read_pins(in, cloth, scene.topology);
   scene.spring_function = read_spring_function(in, cloth);
-  scene.material = read_material(in, root);
+  scene.material = read_material(in, root, scene.fuzzy_material);
   if (in.has(root, "gravity")) scene.gravity = in.vec3(root.at("gravity"), "gravity");
   scene.solver = read_solver(in, root);
   return scene;
@@ -275,11 +285,6 @@ ClothState Scene::initial_state() const {
   for (std::size_t i = 0; i < topology.rest_positions.size(); ++i)
     s.set_position(i, topology.rest_positions[i]);
   return s;
-}
-
-std::string assets_directory() {
-  if (const char* env = std::getenv("NEUROCLOTH_ASSETS")) return env;
-  return NEUROCLOTH_ASSETS_DIR;
 }
 
 }  // namespace neurocloth

@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <map>
 #include <optional>
 
+#include "asset_paths.h"
 #include "cloth_network.h"
 #include "grid_builder.h"
 #include "simulation.h"
@@ -21,6 +23,14 @@ struct Scene {
   std::optional<GridSpec> grid;  // set when the cloth is a grid
   std::vector<int> pins;         // node indices
   Material material;
+  // Set when the material came from a rule base ({"rules", "inputs"} or
+  // {"preset"}): what to re-derive from when an input changes.
+  struct FuzzySource {
+    std::string rules_path;
+    std::map<std::string, double> inputs;
+    std::vector<std::string> notes;  // clamped inputs, defaulted outputs
+  };
+  std::optional<FuzzySource> fuzzy_material;
   SpringFunction spring_function;
   Vec3 gravity = Vec3(0, -9.81, 0);
   SolverSettings solver;
@@ -37,9 +47,5 @@ struct Scene {
 Scene load_scene(const std::string& path);
 // `path` is used for messages and to resolve relative paths (OBJ files).
 Scene parse_scene(const std::string& text, const std::string& path);
-
-// Where assets/ is: the NEUROCLOTH_ASSETS environment variable, else the source
-// tree's assets/ compiled in.
-std::string assets_directory();
 
 }  // namespace neurocloth

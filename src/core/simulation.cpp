@@ -55,6 +55,21 @@ void Simulation::set_state(const ClothState& s) {
   former_force_ = -1;
 }
 
+void Simulation::ramp_to_material(const Material& material, int steps) {
+  ClothNetwork target = net_;
+  target.apply_material(material);
+  ramp_.start(net_, target, steps);
+}
+
+// Applies the ramp's next weights (between two steps); drops what they invalidate.
+bool Simulation::advance_ramp() {
+  if (!ramp_.advance(net_)) return false;
+  front_forces_valid_ = false;
+  cap_ = -1;
+  former_force_ = -1;
+  return true;
+}
+
 double Simulation::step_cap() {
   if (cap_ < 0) {
     const double bound = stable_step_bound(net_, integrator_->stability_limit());
@@ -102,6 +117,7 @@ void Simulation::after_accept(bool force_check) {
 }
 
 void Simulation::fixed_step(double h) {
+  advance_ramp();
   ensure_front_forces();
   // A fixed step is never rejected, so an integrator that can may write over
   // the current state (the checkpoint still guards against divergence).
@@ -120,12 +136,18 @@ void Simulation::fixed_step(double h) {
 // and a tolerance on "the force grows".
 void Simulation::adaptive_frame(double frame_end) {
   const AdaptiveSettings& A = settings_.adaptive_settings;
-  const double cap = step_cap();
-  const double floor = cap * A.min_step_fraction;
+  double cap = step_cap();
+  double floor = cap * A.min_step_fraction;
   double tc = cap;  // Table 1: t_c := t_delta, never above the cap
-  ensure_front_forces();
-  if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
+  bool accepted = true;
   while (status_ == RunStatus::ok && time_ < frame_end) {
+    if (accepted && advance_ramp()) {  // weights moved: a new cap, new forces
+      cap = step_cap();
+      floor = cap * A.min_step_fraction;
+      tc = std::min(tc, cap);
+    }
+    ensure_front_forces();
+    if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
     const double h = std::min(tc, frame_end - time_);
     const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *back_);
     net_.net_forces(*back_, *force_back_);
@@ -137,6 +159,7 @@ void Simulation::adaptive_frame(double frame_end) {
     const bool grows = !(m <= allowed);  // NaN grows
     const bool forced = grows && tc <= floor;
     StepEvent ev{time_, tc, h, !grows || forced, forced, m, former_force_};
+    accepted = !grows || forced;
     if (grows && !forced) {
       ++rejected_;
       tc = std::max(0.5 * tc, floor);  // Table 1: t_c := t_c * 0.5 (rollback: no swap)

@@ -11,7 +11,9 @@
 #include "cloth_network.h"
 #include "divergence_monitor.h"
 #include "integrator.h"
+#include "material.h"
 #include "solver_settings.h"
+#include "weight_ramp.h"
 
 namespace neurocloth {
 
@@ -45,6 +47,10 @@ class Simulation {
   // For parameter changes between steps; drops cached forces and step bounds.
   ClothNetwork& mutable_network();
   void set_external_force(std::size_t node, const Vec3& force);
+  // Moves every spring's and node's weights to `material`'s over `steps`
+  // accepted steps (a live change of a linguistic input: no jolt).
+  void ramp_to_material(const Material& material, int steps = 64);
+  bool ramping() const { return ramp_.active(); }
   void set_state(const ClothState& state);
 
   const ClothState& state() const { return *front_; }
@@ -73,6 +79,7 @@ class Simulation {
   void accept(double h);
   void after_accept(bool force_check);
   void run_check();
+  bool advance_ramp();
 
   ClothNetwork net_;
   SolverSettings settings_;
@@ -86,6 +93,7 @@ class Simulation {
   bool front_forces_valid_ = false;
   int degenerate_ = 0;
   DivergenceMonitor monitor_;
+  WeightRamp ramp_;
 
   RunStatus status_ = RunStatus::ok;
   std::string reason_;

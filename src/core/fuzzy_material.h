@@ -1,0 +1,59 @@
+#pragma once
+// The paper's fuzzy system in use: a rule base whose outputs are the network's
+// physical parameters (spring_constant, node_mass, viscosity, friction) and a
+// set of linguistic inputs ("mass", "elasticity", "force") that select them.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fuzzy/fuzzy_system.h"
+#include "fuzzy/inference.h"
+#include "material.h"
+
+namespace neurocloth {
+
+// A material described in words: a rule base and values for its inputs, as a
+// scene's material block or a preset file (assets/materials/NAME.json) gives them.
+struct LinguisticMaterial {
+  std::string rules_path;  // resolved
+  std::map<std::string, double> inputs;
+  std::string source;        // the file the inputs came from, for messages
+  std::string inputs_field;  // where in it ("material.inputs" or "inputs")
+};
+
+// Throws InputError when there is no such preset or it is malformed.
+LinguisticMaterial load_preset(const std::string& name);
+// The names of the shipped presets, sorted.
+std::vector<std::string> preset_names();
+
+struct DerivedMaterial {
+  Material material;
+  fuzzy::InferenceReport report;  // rule activations, clamped inputs, defaulted outputs
+};
+
+class FuzzyMaterial {
+ public:
+  // The outputs every material rule base must define.
+  static constexpr const char* kOutputs[] = {"spring_constant", "node_mass", "viscosity",
+                                             "friction"};
+
+  // Throws InputError (naming `source`) when an output is missing or its range
+  // admits values the network cannot take (node_mass <= 0, negative constants).
+  FuzzyMaterial(fuzzy::FuzzySystem system, std::string source);
+  static FuzzyMaterial load(const std::string& fcl_path);
+
+  // Every input of the rule base must be given, and nothing else; `where` names
+  // the place they came from in messages (e.g. "scene.json" / "material.inputs").
+  DerivedMaterial derive(const std::map<std::string, double>& inputs, const std::string& where = "",
+                         const std::string& field = "inputs") const;
+
+  const fuzzy::FuzzySystem& system() const { return system_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  fuzzy::FuzzySystem system_;
+  std::string source_;
+  int outputs_[4];
+};
+
+}  // namespace neurocloth
