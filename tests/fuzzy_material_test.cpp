@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "fuzzy/fcl_reader.h"
+#include "fuzzy/fcl_writer.h"
 #include "input_error.h"
 #include "relaxation.h"
 #include "test_support.h"
@@ -45,6 +46,23 @@ TEST(FuzzyMaterial, ShippedRuleBaseHasThePapersDomainsAndRules) {
     EXPECT_EQ(s.outputs[k].terms[r.consequents[0].term].name, "very_low");
     EXPECT_EQ(r.consequents[1].variable, visc);
     EXPECT_EQ(s.outputs[visc].terms[r.consequents[1].term].name, "high");
+  }
+}
+
+// The shipped file survives write -> read: same text again, same outputs.
+TEST(FuzzyMaterial, ShippedRuleBaseRoundTripsThroughTheWriter) {
+  const fuzzy::FuzzySystem s = fuzzy::read_fcl(assets_directory() + "/materials/cloth.fcl");
+  const std::string text = fuzzy::write_fcl(s);
+  const fuzzy::FuzzySystem back = fuzzy::parse_fcl(text, "written.fcl");
+  EXPECT_EQ(fuzzy::write_fcl(back), text);
+  for (const auto& name : {"silk", "cotton", "denim", "leather", "rubber"}) {
+    const LinguisticMaterial lm = load_preset(name);
+    const Material a = FuzzyMaterial(s, "a").derive(lm.inputs).material;
+    const Material b = FuzzyMaterial(back, "b").derive(lm.inputs).material;
+    EXPECT_EQ(a.spring_constant, b.spring_constant) << name;
+    EXPECT_EQ(a.node_mass, b.node_mass) << name;
+    EXPECT_EQ(a.viscosity, b.viscosity) << name;
+    EXPECT_EQ(a.friction, b.friction) << name;
   }
 }
 
@@ -211,8 +229,8 @@ TEST(FuzzyMaterial, LiveChangeIsRampedWithoutAJolt) {
       ramped, 10, 100, [&] { ramped.ramp_to_material(target, 64); }, quiet);
   const double jerk_instant = largest_jerk(
       instant, 10, 100, [&] { instant.mutable_network().apply_material(target); }, quiet_instant);
-  std::cout << "largest one-step acceleration change, m/s^2: at once " << jerk_instant << ", ramped "
-            << jerk_ramped << ", before the change " << quiet << "\n";
+  std::cout << "largest one-step acceleration change, m/s^2: at once " << jerk_instant
+            << ", ramped " << jerk_ramped << ", before the change " << quiet << "\n";
   EXPECT_FALSE(ramped.ramping());
   EXPECT_EQ(ramped.network().springs.stiffness[7], target.spring_constant);  // landed exactly
   EXPECT_EQ(ramped.network().masses.inverse_mass[7], 1.0 / target.node_mass);
