@@ -17,10 +17,10 @@ struct Condition {
   enum class Kind { term, all, any, negation };  // IS, AND, OR, NOT
   Kind kind = Kind::term;
   // Kind::term
-  int variable = -1;           // input index
-  int term = -1;               // term index in that input
-  std::vector<Hedge> hedges;   // in source order: "very somewhat" -> {very, somewhat}
-  bool negated = false;        // "IS NOT": 1 - mu, applied after the hedges
+  int variable = -1;          // input index
+  int term = -1;              // term index in that input
+  std::vector<Hedge> hedges;  // in source order: "very somewhat" -> {very, somewhat}
+  bool negated = false;       // "IS NOT": 1 - mu, applied after the hedges
   // all / any: two or more children; negation: one
   std::vector<Condition> children;
 };
@@ -38,10 +38,10 @@ struct Rule {
   int line = 0;         // where it came from, for messages (0 if built in code)
 };
 
-enum class AndMethod { min, product };             // FCL AND : MIN | PROD
-enum class OrMethod { max, probabilistic_sum };    // FCL OR : MAX | ASUM
-enum class Activation { min, product };            // FCL ACT : MIN | PROD
-enum class Accumulation { max, sum };              // FCL ACCU : MAX | SUM
+enum class AndMethod { min, product };           // FCL AND : MIN | PROD
+enum class OrMethod { max, probabilistic_sum };  // FCL OR : MAX | ASUM
+enum class Activation { min, product };          // FCL ACT : MIN | PROD
+enum class Accumulation { max, sum };            // FCL ACCU : MAX | SUM
 
 struct RuleBlock {
   std::string name;

@@ -17,7 +17,8 @@ struct Term {
 
 enum class Defuzzification {
   centroid,          // FCL COG: Mamdani, centre of gravity of the accumulated set
-  weighted_average,  // FCL COGS: Takagi-Sugeno, activations weighting singletons or linear consequents
+  weighted_average,  // FCL COGS: Takagi-Sugeno, activations weighting singletons or linear
+                     // consequents
 };
 
 struct LinguisticVariable {
