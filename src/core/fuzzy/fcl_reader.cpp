@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <system_error>
+#include <tuple>
 #include <utility>
 
 #include "fcl_lexer.h"
@@ -49,61 +49,47 @@ std::vector<double> x_positions(const MembershipFunction& f) {
   return p;  // trian, trape, singleton: every parameter
 }
 
-// "variable IS term" in a rule, kept by name until the whole file is read: a
-// RULEBLOCK may come before the blocks that define its variables and terms.
-struct Reference {
-  std::string variable, term, field;
-  Pos variable_at, term_at;
-};
-
-// "linear 0.5 mass 2": inputs are named, and their order (VAR_INPUT) is only
-// known at the end.
-struct LinearInput {
-  std::string name;
-  double coefficient = 0;
-  Pos at;
-};
-
-struct TermSource {
-  Pos at;  // the term's name
-  std::vector<LinearInput> inputs;
-};
-
+// A FUZZIFY or DEFUZZIFY block while it is read.
 struct VariableBlock {
   LinguisticVariable variable;
   bool output = false;
   std::string field;  // "FUZZIFY mass"
   Pos at;             // the variable's name
-  std::vector<TermSource> terms;
+  std::vector<Pos> term_at;
   bool has_range = false, has_method = false, has_default = false;
   Pos method_at;
 };
 
-struct Declaration {
-  std::string name;
-  bool input = true;
-  Pos at;
+// Where a declared variable was declared and (once read) defined.
+struct Slot {
+  Pos declared, defined;
+  bool has_block = false;
 };
 
+// Reads in one pass, in the order IEC 61131-7 prescribes: every VAR section
+// before the FUZZIFY / DEFUZZIFY blocks (in any order among themselves), and
+// those before the RULEBLOCKs. So every name is known when it is used and
+// errors come in file order.
 class Parser : fcl::Cursor {
  public:
   Parser(const std::string& text, const std::string& path) : Cursor(text, path) {}
 
   FuzzySystem parse() {
     function_block();
-    return resolve();
+    return std::move(system_);
   }
 
  private:
+  enum class Part { declarations, variables, rules };
+
   // ---- FUNCTION_BLOCK and VAR -----------------------------------------------
 
   void function_block() {
     const Token head = expect_keyword("FUNCTION_BLOCK", "FUNCTION_BLOCK");
     if (at_name()) system_.name = take().text;
     outer_field_ = "FUNCTION_BLOCK" + (system_.name.empty() ? "" : " " + system_.name);
-    function_at_ = where(head);
     open(head, outer_field_, "END_FUNCTION_BLOCK");
-    while (!accept_keyword("END_FUNCTION_BLOCK")) {
+    while (!at_keyword("END_FUNCTION_BLOCK")) {
       if (at_keyword("VAR_INPUT") || at_keyword("VAR_OUTPUT"))
         declarations(at_keyword("VAR_INPUT"));
       else if (at_keyword("FUZZIFY") || at_keyword("DEFUZZIFY"))
@@ -113,35 +99,77 @@ class Parser : fcl::Cursor {
       else
         unexpected("VAR_INPUT, VAR_OUTPUT, FUZZIFY, DEFUZZIFY, RULEBLOCK or END_FUNCTION_BLOCK");
     }
+    const Token end = take();
+    enter(Part::rules, end);
     close();
+    std::size_t rules = 0;
+    for (const RuleBlock& b : system_.blocks)
+      rules += b.rules.size();
+    if (rules == 0) fail("the function block has no rules (a RULEBLOCK with a RULE)", where(head));
     if (peek().kind != TokenKind::end)
       fail("expected end of file after END_FUNCTION_BLOCK (one function block per file), got '" +
                peek().text + "'",
            where(peek()));
   }
 
+  // Moves on to `next`; leaving the variable blocks, every declared variable
+  // must have had its block.
+  void enter(Part next, const Token& head) {
+    if (next < part_)
+      fail(head.text + " must come before " +
+               (part_ == Part::rules ? "the RULEBLOCKs" : "the FUZZIFY and DEFUZZIFY blocks"),
+           where(head));
+    if (next == Part::rules && part_ != Part::rules) {
+      for (bool input : {true, false}) {
+        const auto& slots = input ? input_slots_ : output_slots_;
+        for (std::size_t i = 0; i < slots.size(); ++i) {
+          if (slots[i].has_block) continue;
+          field_ = input ? "VAR_INPUT" : "VAR_OUTPUT";
+          fail((input ? "input '" + system_.inputs[i].name + "' has no FUZZIFY block"
+                      : "output '" + system_.outputs[i].name + "' has no DEFUZZIFY block"),
+               slots[i].declared);
+        }
+      }
+    }
+    part_ = next;
+  }
+
   void declarations(bool input) {
     const Token head = take();
+    enter(Part::declarations, head);
     open(head, input ? "VAR_INPUT" : "VAR_OUTPUT", "END_VAR");
     while (!accept_keyword("END_VAR")) {
       const Token name = expect_name("a variable name or END_VAR");
       expect_symbol(":", "':' after the variable name");
       expect_keyword("REAL", "REAL (the only variable type)");
       expect_symbol(";", "';' after REAL");
-      for (const Declaration& d : declared_)
-        if (d.name == name.text)
-          fail("duplicate variable '" + name.text + "' (first declared at line " +
-                   std::to_string(d.at.line) + ")",
-               where(name));
-      declared_.push_back({name.text, input, where(name)});
+      const int i = system_.input_index(name.text), o = system_.output_index(name.text);
+      if (i >= 0 || o >= 0)
+        fail("duplicate variable '" + name.text + "'" +
+                 first_at(i >= 0 ? input_slots_[i].declared : output_slots_[o].declared),
+             where(name));
+      LinguisticVariable v;
+      v.name = name.text;
+      (input ? system_.inputs : system_.outputs).push_back(std::move(v));
+      (input ? input_slots_ : output_slots_).push_back({where(name), {}, false});
     }
     close();
+  }
+
+  static std::string first_at(Pos p) {
+    return " (the first is at line " + std::to_string(p.line) + ")";
+  }
+
+  // For items a block may hold only once.
+  void once(bool& given, const Token& head) {
+    if (std::exchange(given, true)) fail(head.text + " given twice", where(head));
   }
 
   // ---- FUZZIFY and DEFUZZIFY --------------------------------------------------
 
   void variable_block(bool output) {
     const Token head = take();
+    enter(Part::variables, head);
     const std::string keyword = output ? "DEFUZZIFY" : "FUZZIFY";
     const Token name = expect_name("a variable name after " + keyword);
     VariableBlock b;
@@ -150,11 +178,10 @@ class Parser : fcl::Cursor {
     b.field = keyword + " " + name.text;
     b.at = where(name);
     open(head, b.field, output ? "END_DEFUZZIFY" : "END_FUZZIFY");
-    for (const VariableBlock& other : blocks_)
-      if (other.variable.name == name.text)
-        fail("duplicate block for variable '" + name.text + "' (the first is at line " +
-                 std::to_string(other.at.line) + ")",
-             b.at);
+    Slot& slot = declared_slot(b);
+    if (slot.has_block)
+      fail("duplicate block for variable '" + name.text + "'" + first_at(slot.defined), b.at);
+    slot = {slot.declared, b.at, true};
     while (!accept_keyword(output ? "END_DEFUZZIFY" : "END_FUZZIFY")) {
       if (at_keyword("TERM"))
         term(b);
@@ -170,24 +197,38 @@ class Parser : fcl::Cursor {
     }
     finish(b);
     close();
-    blocks_.push_back(std::move(b));
+    const int i = output ? system_.output_index(name.text) : system_.input_index(name.text);
+    (output ? system_.outputs : system_.inputs)[static_cast<std::size_t>(i)] =
+        std::move(b.variable);
+  }
+
+  Slot& declared_slot(const VariableBlock& b) {
+    const std::string& name = b.variable.name;
+    const int i = b.output ? system_.output_index(name) : system_.input_index(name);
+    if (i >= 0) return (b.output ? output_slots_ : input_slots_)[static_cast<std::size_t>(i)];
+    if ((b.output ? system_.input_index(name) : system_.output_index(name)) >= 0)
+      fail("'" + name + "' is declared in " + (b.output ? "VAR_INPUT" : "VAR_OUTPUT") +
+               ", so its block must be " + (b.output ? "FUZZIFY" : "DEFUZZIFY"),
+           b.at);
+    fail(
+        "unknown variable '" + name + "': declare it in " + (b.output ? "VAR_OUTPUT" : "VAR_INPUT"),
+        b.at);
   }
 
   void range(VariableBlock& b) {
     const Token head = take();
-    if (b.has_range) fail("RANGE given twice", where(head));
+    once(b.has_range, head);
     expect_symbol(":=", "':=' after RANGE");
     expect_symbol("(", "'(' to open the RANGE");
-    const double lo = expect_number("the RANGE minimum (a number)");
+    b.variable.min = expect_number("the RANGE minimum (a number)");
     expect_symbol("..", "'..' between the RANGE bounds");
-    const double hi = expect_number("the RANGE maximum (a number)");
+    b.variable.max = expect_number("the RANGE maximum (a number)");
     expect_symbol(")", "')' to close the RANGE");
     expect_symbol(";", "';' after RANGE");
-    if (!(lo < hi))
-      fail("RANGE needs min < max, got (" + show(lo) + " .. " + show(hi) + ")", where(head));
-    b.has_range = true;
-    b.variable.min = lo;
-    b.variable.max = hi;
+    if (!(b.variable.min < b.variable.max))
+      fail("RANGE needs min < max, got (" + show(b.variable.min) + " .. " + show(b.variable.max) +
+               ")",
+           where(head));
   }
 
   void term(VariableBlock& b) {
@@ -197,18 +238,17 @@ class Parser : fcl::Cursor {
     if (b.variable.term_index(name.text) >= 0)
       fail("duplicate term '" + name.text + "' in " + b.field, where(name));
     expect_symbol(":=", "':=' after the term name");
-    TermSource source{where(name), {}};
-    Term t{name.text, membership(b, source)};
+    Term t{name.text, membership(b)};
     expect_symbol(";", "';' after TERM definition");
     const std::string problem = t.function.validate();
     if (!problem.empty()) fail(problem, where(name));
     b.variable.terms.push_back(std::move(t));
-    b.terms.push_back(std::move(source));
+    b.term_at.push_back(where(name));
     field_ = b.field;
   }
 
   // Shape names are to_string(Shape), as the writer writes them.
-  MembershipFunction membership(const VariableBlock& b, TermSource& source) {
+  MembershipFunction membership(const VariableBlock& b) {
     if (peek().kind == TokenKind::number) return {Shape::singleton, {take().value}};
     if (at_symbol("(")) return points();
     MembershipFunction f{Shape::points, {}};
@@ -217,14 +257,14 @@ class Parser : fcl::Cursor {
       if (at_keyword(to_string(s))) f.shape = s;
     if (f.shape == Shape::points)
       unexpected(
-          "a membership function (a number, '(x, y) ...', trian, trape, gauss, gbell, "
-          "sigm, singleton or linear)");
+          "a membership function (a number, '(x, y) ...', trian, trape, gauss, gbell, sigm, "
+          "singleton or linear)");
     const Token head = take();
-    if (f.shape == Shape::linear) return linear(b, head, source);
+    if (f.shape == Shape::linear) return linear(b, head);
     const int n = parameter_count(f.shape);
     for (int i = 0; i < n; ++i)
-      f.params.push_back(expect_number("a number (" + std::string(to_string(f.shape)) + " takes " +
-                                       std::to_string(n) + " parameters)"));
+      f.params.push_back(
+          expect_number("a number (" + head.text + " takes " + std::to_string(n) + " parameters)"));
     return f;
   }
 
@@ -239,48 +279,48 @@ class Parser : fcl::Cursor {
     return f;
   }
 
-  // The constant now; each named input's coefficient goes to its place once
-  // VAR_INPUT's order is known (resolve_linear).
-  MembershipFunction linear(const VariableBlock& b, const Token& head, TermSource& source) {
+  // c0, then one coefficient per input in VAR_INPUT order (0 when not named).
+  MembershipFunction linear(const VariableBlock& b, const Token& head) {
     if (!b.output)
       fail("linear terms are Takagi-Sugeno consequents, allowed only in DEFUZZIFY", where(head));
-    MembershipFunction f{Shape::linear, {expect_number("the constant c0 after linear")}};
+    MembershipFunction f{Shape::linear, std::vector<double>(1 + system_.inputs.size(), 0.0)};
+    f.params[0] = expect_number("the constant c0 after linear");
+    std::vector<char> named(system_.inputs.size(), 0);
     while (at_name()) {
       const Token input = take();
-      for (const LinearInput& seen : source.inputs)
-        if (seen.name == input.text)
-          fail("input '" + input.text + "' appears twice in this linear term", where(input));
-      const double c = expect_number("a coefficient after '" + input.text + "'");
-      source.inputs.push_back({input.text, c, where(input)});
+      const int k = system_.input_index(input.text);
+      if (k < 0)
+        fail("linear term names '" + input.text +
+                 "', which is not an input (inputs: " + names(system_.inputs) + ")",
+             where(input));
+      if (std::exchange(named[static_cast<std::size_t>(k)], 1))
+        fail("input '" + input.text + "' appears twice in this linear term", where(input));
+      f.params[1 + static_cast<std::size_t>(k)] =
+          expect_number("a coefficient after '" + input.text + "'");
     }
     return f;
   }
 
   void method(VariableBlock& b) {
     const Token head = take();
-    if (b.has_method) fail("METHOD given twice", where(head));
+    once(b.has_method, head);
+    b.method_at = where(head);
     expect_symbol(":", "':' after METHOD");
-    if (at_keyword("COG"))
-      b.variable.method = Defuzzification::centroid;
-    else if (at_keyword("COGS"))
-      b.variable.method = Defuzzification::weighted_average;
-    else
+    const bool cogs = at_keyword("COGS");
+    if (!cogs && !at_keyword("COG"))
       unexpected("COG or COGS (the supported defuzzification methods)");
     take();
+    b.variable.method = cogs ? Defuzzification::weighted_average : Defuzzification::centroid;
     expect_symbol(";", "';' after METHOD");
-    b.has_method = true;
-    b.method_at = where(head);
   }
 
   void default_value(VariableBlock& b) {
-    const Token head = take();
-    if (b.has_default) fail("DEFAULT given twice", where(head));
+    once(b.has_default, take());
     expect_symbol(":=", "':=' after DEFAULT");
     b.variable.default_value = accept_keyword("NC")
                                    ? std::numeric_limits<double>::quiet_NaN()
                                    : expect_number("a number or NC after DEFAULT :=");
     expect_symbol(";", "';' after DEFAULT");
-    b.has_default = true;
   }
 
   // Checks that need the whole block: RANGE (given or inferred), METHOD.
@@ -294,7 +334,7 @@ class Parser : fcl::Cursor {
           field_ = "TERM " + v.terms[i].name;
           fail("term out of range: x = " + show(x) + " lies outside the RANGE (" + show(v.min) +
                    " .. " + show(v.max) + ") of '" + v.name + "'",
-               b.terms[i].at);
+               b.term_at[i]);
         }
     if (b.output) check_method(b);
   }
@@ -307,10 +347,7 @@ class Parser : fcl::Cursor {
         hi = std::max(hi, x);
       }
     if (!(lo < hi))
-      fail(
-          "no RANGE given, and the terms' x positions span no interval to infer one from; add "
-          "RANGE := (min .. max);",
-          b.at);
+      fail("no RANGE given, and the terms' x positions span no interval to infer one from", b.at);
     b.variable.min = lo;
     b.variable.max = hi;
   }
@@ -322,11 +359,10 @@ class Parser : fcl::Cursor {
     const bool sugeno = b.variable.method == Defuzzification::weighted_average;
     for (std::size_t i = 0; i < b.variable.terms.size(); ++i) {
       const Term& t = b.variable.terms[i];
-      const bool constant =
-          t.function.shape == Shape::singleton || t.function.shape == Shape::linear;
-      if (constant == sugeno) continue;
-      const std::string term = "term '" + t.name + "' (line " + std::to_string(b.terms[i].at.line) +
-                               ") is " + to_string(t.function.shape);
+      const Shape shape = t.function.shape;
+      if ((shape == Shape::singleton || shape == Shape::linear) == sugeno) continue;
+      const std::string term = "term '" + t.name + "' (line " + std::to_string(b.term_at[i].line) +
+                               ") is " + to_string(shape);
       fail(sugeno ? "METHOD COGS needs every term to be singleton or linear, but " + term
                   : "METHOD COG needs membership functions, but " + term + "; use COGS",
            b.method_at);
@@ -337,6 +373,7 @@ class Parser : fcl::Cursor {
 
   void rule_block() {
     const Token head = take();
+    enter(Part::rules, head);
     RuleBlock rb;
     const Pos name_at = where(peek());
     if (at_name()) rb.name = take().text;
@@ -367,9 +404,8 @@ class Parser : fcl::Cursor {
       if (at_keyword(kSetting[i][0])) which = i;
     if (which < 0) return false;
     const Token head = take();
+    once(given[static_cast<std::size_t>(which)], head);
     const std::string name = head.text, first = kSetting[which][1], second = kSetting[which][2];
-    if (std::exchange(given[which], true))
-      fail(name + " given twice in this RULEBLOCK", where(head));
     expect_symbol(":", "':' after " + name);
     const bool alternative = at_keyword(second.c_str());
     if (!alternative && !at_keyword(first.c_str()))
@@ -394,9 +430,7 @@ class Parser : fcl::Cursor {
     const std::string block_field = std::exchange(field_, "RULE " + r.label);
     for (const Rule& other : rb.rules)
       if (other.label == r.label)
-        fail("duplicate rule label '" + r.label + "' in this RULEBLOCK (first at line " +
-                 std::to_string(other.line) + ")",
-             where(label));
+        fail("duplicate rule label '" + r.label + "'" + first_at({other.line, 0}), where(label));
     expect_symbol(":", "':' after the rule label");
     expect_keyword("IF", "IF");
     r.condition = disjunction();
@@ -404,15 +438,14 @@ class Parser : fcl::Cursor {
     do
       r.consequents.push_back(consequent());
     while (accept_symbol(","));
-    if (accept_keyword("WITH")) {
+    const bool with = accept_keyword("WITH");
+    if (with) {
       const Token weight = peek();
       r.weight = expect_number("a weight after WITH (a number in [0, 1])");
       if (!(r.weight >= 0 && r.weight <= 1))
         fail("WITH weight must be in [0, 1], got " + weight.text, where(weight));
-      expect_symbol(";", "';' after the rule");
-    } else {
-      expect_symbol(";", "',', WITH or ';' after the consequent");
     }
+    expect_symbol(";", with ? "';' after the rule" : "',', WITH or ';' after the consequent");
     field_ = block_field;
     return r;
   }
@@ -454,16 +487,10 @@ class Parser : fcl::Cursor {
     expect_keyword("IS", "IS after '" + variable.text + "'");
     Condition c;
     c.negated = accept_keyword("NOT");
-    for (;;) {
-      if (accept_keyword("VERY"))
-        c.hedges.push_back(Hedge::very);
-      else if (accept_keyword("SOMEWHAT"))
-        c.hedges.push_back(Hedge::somewhat);
-      else
-        break;
-    }
+    while (at_keyword("VERY") || at_keyword("SOMEWHAT"))
+      c.hedges.push_back(fcl::same_keyword(take().text, "VERY") ? Hedge::very : Hedge::somewhat);
     const Token term = expect_name("a term name");
-    c.variable = remember(variable, term);
+    std::tie(c.variable, c.term) = lookup(variable, term, false);
     return c;
   }
 
@@ -471,121 +498,35 @@ class Parser : fcl::Cursor {
     const Token variable = expect_name("an output variable name");
     expect_keyword("IS", "IS after '" + variable.text + "'");
     const Token term = expect_name("a term name (a consequent takes no NOT or hedge)");
-    Consequent c;
-    c.variable = remember(variable, term);
-    return c;
-  }
-
-  // Until resolve(), a rule's `variable` holds an index into refs_.
-  int remember(const Token& variable, const Token& term) {
-    refs_.push_back({variable.text, term.text, field_, where(variable), where(term)});
-    return static_cast<int>(refs_.size()) - 1;
-  }
-
-  // ---- Names to indices, once everything is read -------------------------------
-
-  FuzzySystem resolve() {
-    for (const VariableBlock& b : blocks_)
-      check_declared(b);
-    for (const Declaration& d : declared_) {
-      const VariableBlock* block = nullptr;
-      for (const VariableBlock& b : blocks_)
-        if (b.variable.name == d.name) block = &b;
-      field_ = d.input ? "VAR_INPUT" : "VAR_OUTPUT";
-      if (!block)
-        fail((d.input ? "input '" : "output '") + d.name + "' has no " +
-                 (d.input ? "FUZZIFY" : "DEFUZZIFY") + " block",
-             d.at);
-      (d.input ? system_.inputs : system_.outputs).push_back(block->variable);
-    }
-    for (const VariableBlock& b : blocks_)
-      if (b.output) resolve_linear(b);
-    std::size_t rules = 0;
-    for (RuleBlock& rb : system_.blocks)
-      for (Rule& r : rb.rules) {
-        resolve(r.condition);
-        for (Consequent& c : r.consequents) {
-          const auto [v, t] = lookup(refs_[c.variable], true);
-          c.variable = v;
-          c.term = t;
-        }
-        ++rules;
-      }
-    field_ = outer_field_;
-    if (rules == 0) fail("the function block has no rules (a RULEBLOCK with a RULE)", function_at_);
-    return std::move(system_);
-  }
-
-  void check_declared(const VariableBlock& b) {
-    field_ = b.field;
-    for (const Declaration& d : declared_) {
-      if (d.name != b.variable.name) continue;
-      if (d.input == b.output)
-        fail("'" + d.name + "' is declared in " + (d.input ? "VAR_INPUT" : "VAR_OUTPUT") +
-                 ", so its block must be " + (d.input ? "FUZZIFY" : "DEFUZZIFY"),
-             b.at);
-      return;
-    }
-    fail("unknown variable '" + b.variable.name + "': declare it in " +
-             (b.output ? "VAR_OUTPUT" : "VAR_INPUT"),
-         b.at);
-  }
-
-  void resolve_linear(const VariableBlock& b) {
-    LinguisticVariable& v = system_.outputs[system_.output_index(b.variable.name)];
-    for (std::size_t i = 0; i < v.terms.size(); ++i) {
-      MembershipFunction& f = v.terms[i].function;
-      if (f.shape != Shape::linear) continue;
-      field_ = "TERM " + v.terms[i].name;
-      std::vector<double> params(1 + system_.inputs.size(), 0.0);
-      params[0] = f.params[0];
-      for (const LinearInput& in : b.terms[i].inputs) {
-        const int k = system_.input_index(in.name);
-        if (k < 0)
-          fail("linear term names '" + in.name +
-                   "', which is not an input (inputs: " + names(system_.inputs) + ")",
-               in.at);
-        params[1 + static_cast<std::size_t>(k)] = in.coefficient;
-      }
-      f.params = std::move(params);
-    }
-  }
-
-  void resolve(Condition& c) {
-    for (Condition& child : c.children)
-      resolve(child);
-    if (c.kind != Condition::Kind::term) return;
-    const auto [v, t] = lookup(refs_[c.variable], false);
-    c.variable = v;
-    c.term = t;
-  }
-
-  // (variable, term): an input for a condition, an output for a consequent.
-  std::pair<int, int> lookup(const Reference& ref, bool output) {
-    field_ = ref.field;
-    const auto& own = output ? system_.outputs : system_.inputs;
-    const int v = output ? system_.output_index(ref.variable) : system_.input_index(ref.variable);
-    if (v < 0) {
-      if ((output ? system_.input_index(ref.variable) : system_.output_index(ref.variable)) >= 0)
-        fail(output ? "consequent on input '" + ref.variable + "': a consequent sets an output"
-                    : "condition on output '" + ref.variable + "': a condition tests an input",
-             ref.variable_at);
-      fail("unknown variable '" + ref.variable + "' (" + (output ? "outputs: " : "inputs: ") +
-               names(own) + ")",
-           ref.variable_at);
-    }
-    const int t = own[static_cast<std::size_t>(v)].term_index(ref.term);
-    if (t < 0)
-      fail("unknown term '" + ref.term + "' of '" + ref.variable +
-               "' (its terms: " + names(own[static_cast<std::size_t>(v)].terms) + ")",
-           ref.term_at);
+    const auto [v, t] = lookup(variable, term, true);
     return {v, t};
   }
 
-  Pos function_at_;
-  std::vector<Declaration> declared_;
-  std::vector<VariableBlock> blocks_;
-  std::vector<Reference> refs_;
+  // (variable, term) indices: an input for a condition, an output for a consequent.
+  std::pair<int, int> lookup(const Token& variable, const Token& term, bool output) {
+    const std::string& name = variable.text;
+    const auto& own = output ? system_.outputs : system_.inputs;
+    const int v = output ? system_.output_index(name) : system_.input_index(name);
+    if (v < 0) {
+      if ((output ? system_.input_index(name) : system_.output_index(name)) >= 0)
+        fail(output ? "consequent on input '" + name + "': a consequent sets an output"
+                    : "condition on output '" + name + "': a condition tests an input",
+             where(variable));
+      fail("unknown variable '" + name + "' (" + (output ? "outputs: " : "inputs: ") + names(own) +
+               ")",
+           where(variable));
+    }
+    const LinguisticVariable& var = own[static_cast<std::size_t>(v)];
+    const int t = var.term_index(term.text);
+    if (t < 0)
+      fail("unknown term '" + term.text + "' of '" + name + "' (its terms: " + names(var.terms) +
+               ")",
+           where(term));
+    return {v, t};
+  }
+
+  Part part_ = Part::declarations;
+  std::vector<Slot> input_slots_, output_slots_;  // parallel to system_.inputs / outputs
   FuzzySystem system_;
 };
 
