@@ -572,7 +572,7 @@ const ErrorCase kErrors[] = {
     {"MissingIs", {{"IF mass IS heavy", "IF mass heavy"}},
      "RULE 1", "heavy THEN", "expected IS after 'mass', got 'heavy'"},
     {"HedgeInConsequent", {{"damping IS lin", "damping IS very lin"}},
-     "RULE 2", "very lin", "expected a term name (a consequent takes no NOT or hedge), got 'very'"},
+     "RULE 2", "very lin", "NOT and hedges shape a Mamdani output set; 'damping' is Takagi-Sugeno (METHOD : COGS), whose terms are values"},
     {"HedgeBeforeNot", {{"IS NOT very small", "IS very NOT small"}},
      "RULE 2", "NOT small", "expected a term name, got 'NOT'"},
     {"UnclosedParenthesis", {{"IF force IS", "IF (force IS"}},

@@ -43,7 +43,8 @@ TEST(FuzzyMaterial, ShippedRuleBaseHasThePapersDomainsAndRules) {
   EXPECT_EQ(paper.rules[2].condition.variable, force);
   for (const auto& r : {paper.rules[1], paper.rules[2]}) {
     ASSERT_EQ(r.consequents.size(), 2u);
-    EXPECT_EQ(s.outputs[k].terms[r.consequents[0].term].name, "very_low");
+    EXPECT_EQ(s.outputs[k].terms[r.consequents[0].term].name, "low");  // "very low": a hedge
+    EXPECT_EQ(r.consequents[0].hedges, std::vector<fuzzy::Hedge>{fuzzy::Hedge::very});
     EXPECT_EQ(r.consequents[1].variable, visc);
     EXPECT_EQ(s.outputs[visc].terms[r.consequents[1].term].name, "high");
   }

@@ -497,9 +497,20 @@ class Parser : fcl::Cursor {
   Consequent consequent() {
     const Token variable = expect_name("an output variable name");
     expect_keyword("IS", "IS after '" + variable.text + "'");
-    const Token term = expect_name("a term name (a consequent takes no NOT or hedge)");
-    const auto [v, t] = lookup(variable, term, true);
-    return {v, t};
+    Consequent c;
+    const Token first = peek();
+    c.negated = accept_keyword("NOT");
+    while (at_keyword("VERY") || at_keyword("SOMEWHAT"))
+      c.hedges.push_back(fcl::same_keyword(take().text, "VERY") ? Hedge::very : Hedge::somewhat);
+    const Token term = expect_name("a term name");
+    std::tie(c.variable, c.term) = lookup(variable, term, true);
+    if ((c.negated || !c.hedges.empty()) &&
+        system_.outputs[static_cast<std::size_t>(c.variable)].method ==
+            Defuzzification::weighted_average)
+      fail("NOT and hedges shape a Mamdani output set; '" + variable.text +
+               "' is Takagi-Sugeno (METHOD : COGS), whose terms are values",
+           where(first));
+    return c;
   }
 
   // (variable, term) indices: an input for a condition, an output for a consequent.

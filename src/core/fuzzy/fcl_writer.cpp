@@ -143,7 +143,10 @@ class Writer {
     for (std::size_t i = 0; i < r.consequents.size(); ++i) {
       const Consequent& c = r.consequents[i];
       const LinguisticVariable& v = pick(s_.outputs, c.variable, "output");
-      out_ += (i ? ", " : "") + v.name + " IS " + pick(v.terms, c.term, "term").name;
+      out_ += (i ? ", " : "") + v.name + " IS " + (c.negated ? "NOT " : "");
+      for (Hedge h : c.hedges)
+        out_ += upper(to_string(h)) + " ";
+      out_ += pick(v.terms, c.term, "term").name;
     }
     if (r.weight != 1.0) out_ += " WITH " + number(r.weight);
     out_ += ";\n";

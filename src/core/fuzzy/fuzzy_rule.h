@@ -25,9 +25,17 @@ struct Condition {
   std::vector<Condition> children;
 };
 
+// "THEN spring_constant IS very low": hedges and NOT shape the output set
+// (Mamdani outputs only: a Takagi-Sugeno consequent is a value, not a set).
 struct Consequent {
-  int variable = -1;  // output index
-  int term = -1;      // term index in that output
+  Consequent() = default;
+  Consequent(int variable_, int term_, std::vector<Hedge> hedges_ = {}, bool negated_ = false)
+      : variable(variable_), term(term_), hedges(std::move(hedges_)), negated(negated_) {}
+
+  int variable = -1;          // output index
+  int term = -1;              // term index in that output
+  std::vector<Hedge> hedges;  // as in Condition
+  bool negated = false;
 };
 
 struct Rule {

@@ -27,6 +27,15 @@ T tsqrt(const T& a) {
   return sqrt(a);
 }
 
+// A term's membership with a condition's or consequent's hedges (innermost
+// first) and NOT applied.
+template <class T>
+T modified(T m, const std::vector<Hedge>& hedges, bool negated) {
+  for (auto h = hedges.rbegin(); h != hedges.rend(); ++h)
+    m = *h == Hedge::very ? m * m : tsqrt(m);
+  return negated ? T(1.0) - m : m;
+}
+
 // Every tunable number of the system as T, laid out like parameters().
 template <class T>
 struct Params {
@@ -59,12 +68,8 @@ template <class T>
 T condition_degree(const Condition& c, const RuleBlock& block,
                    const std::vector<std::vector<T>>& mu) {
   switch (c.kind) {
-    case Condition::Kind::term: {
-      T m = mu[c.variable][c.term];
-      for (auto h = c.hedges.rbegin(); h != c.hedges.rend(); ++h)  // innermost first
-        m = *h == Hedge::very ? m * m : tsqrt(m);
-      return c.negated ? T(1.0) - m : m;
-    }
+    case Condition::Kind::term:
+      return modified(mu[c.variable][c.term], c.hedges, c.negated);
     case Condition::Kind::negation:
       return T(1.0) - condition_degree(c.children[0], block, mu);
     case Condition::Kind::all: {
@@ -95,12 +100,13 @@ struct Contribution {
   int term;
   Activation act;
   Accumulation accu;
+  const Consequent* consequent;  // its hedges and NOT
 };
 
 template <class T>
 T implied(const Contribution<T>& c, const MembershipFunction& f, const std::vector<T>& p,
           const T& y) {
-  const T m = f.membership<T>(y, p.data());
+  const T m = modified(f.membership<T>(y, p.data()), c.consequent->hedges, c.consequent->negated);
   return c.act == Activation::min ? tmin(c.alpha, m) : c.alpha * m;
 }
 
@@ -113,6 +119,12 @@ T aggregate(const std::vector<Contribution<T>>& cs, const LinguisticVariable& v,
     a = c.accu == Accumulation::max ? tmax(a, m) : a + m;
   }
   return a;
+}
+
+// A consequent's set at y, as a double (for locating the pieces).
+template <class T>
+double shaped(const Contribution<T>& c, const MembershipFunction& f, double y) {
+  return modified(f(y), c.consequent->hedges, c.consequent->negated);
 }
 
 // Values of f at the ends of [x0, x0 + h], extrapolated from its interior:
@@ -155,7 +167,7 @@ std::vector<double> linear_pieces(const std::vector<Contribution<T>>& cs,
     for (const auto& c : cs) {
       if (c.act != Activation::min) continue;
       const MembershipFunction& f = v.terms[c.term].function;
-      const auto [f0, f1] = piece_ends(x0, h, [&](double y) { return f(y); });
+      const auto [f0, f1] = piece_ends(x0, h, [&](double y) { return shaped(c, f, y); });
       add_crossing(x0, h, f0 - value(c.alpha), f1 - value(c.alpha), extra);
     }
   }
@@ -170,7 +182,8 @@ std::vector<double> linear_pieces(const std::vector<Contribution<T>>& cs,
       const MembershipFunction& f = v.terms[c.term].function;
       const double alpha = value(c.alpha);
       lines.push_back(piece_ends(x0, h, [&](double y) {
-        return c.act == Activation::min ? std::min(alpha, f(y)) : alpha * f(y);
+        return c.act == Activation::min ? std::min(alpha, shaped(c, f, y))
+                                        : alpha * shaped(c, f, y);
       }));
     }
     for (std::size_t a = 0; a < lines.size(); ++a)
@@ -189,7 +202,7 @@ std::pair<T, T> moments(const std::vector<Contribution<T>>& cs, const Linguistic
                         const std::vector<std::vector<T>>& p) {
   bool exact = true;
   for (const auto& c : cs)
-    exact = exact && v.terms[c.term].function.piecewise_linear();
+    exact = exact && v.terms[c.term].function.piecewise_linear() && c.consequent->hedges.empty();
   T area(0.0), moment(0.0);
   if (exact) {
     // Linear on each piece: two interior samples give the line; integrate it.
@@ -270,7 +283,8 @@ std::vector<T> run(const FuzzySystem& s, const std::vector<T>& raw_inputs, const
       const T alpha = p.weight[b][r] * condition_degree(rule.condition, block, mu);
       report.activation.back().push_back(value(alpha));
       for (const Consequent& c : rule.consequents)
-        contributions[c.variable].push_back({alpha, c.term, block.activation, block.accumulation});
+        contributions[c.variable].push_back(
+            {alpha, c.term, block.activation, block.accumulation, &c});
     }
   }
 

@@ -3,9 +3,9 @@
 // accumulate the implied sets and defuzzify each output.
 //
 // Mamdani centroids are exact (to round-off) when every output set is piecewise
-// linear: the accumulated set is then linear between a finite list of points —
-// the sets' corners, where a set crosses its activation level (ACT MIN), and
-// where two implied sets cross (ACCU MAX) — and each piece is integrated in
+// linear (NOT keeps it so; very and somewhat on a consequent do not): the accumulated set is then
+// linear between a finite list of points — the sets' corners, where a set crosses its activation
+// level (ACT MIN), and where two implied sets cross (ACCU MAX) — and each piece is integrated in
 // closed form. Other shapes are integrated by the trapezoid rule on
 // kCentroidSamples intervals (error below 1e-6 of the range for the shapes the
 // tests check against a 10x finer grid).
