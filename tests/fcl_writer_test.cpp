@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "fuzzy/fcl_reader.h"
+#include "fuzzy_builders.h"
 
 namespace neurocloth::fuzzy {
 namespace {
 using Kind = Condition::Kind;
+using test::is;
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -28,19 +30,8 @@ std::uint64_t bits(double v) {
 
 // ---- Building systems in code ------------------------------------------------
 
-Condition is(int variable, int term, std::vector<Hedge> hedges = {}, bool negated = false) {
-  Condition c;
-  c.variable = variable;
-  c.term = term;
-  c.hedges = std::move(hedges);
-  c.negated = negated;
-  return c;
-}
 Condition node(Kind kind, std::vector<Condition> children) {
-  Condition c;
-  c.kind = kind;
-  c.children = std::move(children);
-  return c;
+  return test::combine(kind, std::move(children));
 }
 Condition all(std::vector<Condition> c) {
   return node(Kind::all, std::move(c));
