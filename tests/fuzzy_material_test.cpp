@@ -146,10 +146,29 @@ TEST(FuzzyMaterial, SceneMaterialFromRulesSetsEveryWeight) {
     ASSERT_EQ(net.springs.stiffness[s], expected.spring_constant);
     ASSERT_EQ(net.springs.damping[s], expected.viscosity);
   }
-  for (std::size_t i = 0; i < net.node_count(); ++i) {
-    ASSERT_EQ(net.masses.inverse_mass[i], 1.0 / expected.node_mass);
+  for (std::size_t i = 0; i < net.node_count(); ++i)
     ASSERT_EQ(net.masses.friction[i], expected.friction);
-  }
+  // node_mass is the mass of 0.0025 m^2 of cloth; each node carries its lumped
+  // share: a whole one inside the 5 cm grid, half on an edge.
+  EXPECT_NEAR(net.mass(5 * 20 + 5), expected.node_mass, 1e-12 * expected.node_mass);
+  EXPECT_NEAR(net.mass(5 * 20 + 0), 0.5 * expected.node_mass, 1e-12 * expected.node_mass);
+  // So the cloth weighs density x area (0.2 kg/m^2 x 0.95 m x 0.95 m) at any
+  // resolution: the same cloth on a grid twice as fine.
+  auto total = [](const ClothNetwork& n) {
+    double m = 0;
+    for (std::size_t i = 0; i < n.node_count(); ++i)
+      m += n.mass(i);
+    return m;
+  };
+  EXPECT_NEAR(total(net), 0.2 * 0.95 * 0.95, 1e-12);
+  Scene fine = scene;
+  GridSpec g = *fine.grid;
+  g.rows = g.cols = 39;
+  g.spacing = 0.025;
+  fine.grid = g;
+  fine.topology = build_grid(g);
+  fine.pins = {0, 38};
+  EXPECT_NEAR(total(fine.build_network()), 0.2 * 0.95 * 0.95, 1e-12);
   Simulation sim = scene.make_simulation();
   EXPECT_EQ(sim.advance(0.5), RunStatus::ok) << sim.divergence_reason();
 }
@@ -234,7 +253,8 @@ TEST(FuzzyMaterial, LiveChangeIsRampedWithoutAJolt) {
             << ", ramped " << jerk_ramped << ", before the change " << quiet << "\n";
   EXPECT_FALSE(ramped.ramping());
   EXPECT_EQ(ramped.network().springs.stiffness[7], target.spring_constant);  // landed exactly
-  EXPECT_EQ(ramped.network().masses.inverse_mass[7], 1.0 / target.node_mass);
+  EXPECT_EQ(ramped.network().masses.inverse_mass[7],
+            1.0 / (target.node_mass * ramped.network().mass_share[7]));
   EXPECT_GT(jerk_instant, 100 * quiet);  // the change really is a jolt when applied at once
   EXPECT_LT(jerk_ramped, 0.1 * jerk_instant) << "quiet " << quiet;
   EXPECT_EQ(ramped.status(), RunStatus::ok);

@@ -15,6 +15,7 @@ ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& 
   net.masses.friction.assign(n, 0.0);
   net.masses.free.assign(n, 1.0);
   net.masses.external_force.resize(n);
+  net.mass_share.assign(n, 1.0);
 
   SpringLayer& L = net.springs;
   L.function = function;
@@ -46,7 +47,8 @@ void ClothNetwork::apply_material(const Material& m) {
     }
     springs.damping[s] = m.viscosity;
   }
-  std::fill(masses.inverse_mass.begin(), masses.inverse_mass.end(), 1.0 / m.node_mass);
+  for (std::size_t i = 0; i < masses.size(); ++i)
+    masses.inverse_mass[i] = 1.0 / (m.node_mass * mass_share[i]);
   std::fill(masses.friction.begin(), masses.friction.end(), m.friction);
 }
 

@@ -41,6 +41,10 @@ class ClothNetwork {
   SpringLayer springs;
   MassLayer masses;
   Vec3 gravity = Vec3(0, -9.81, 0);
+  // Per node, how many of a material's node masses it carries (1 unless the
+  // scene says otherwise): apply_material() sets m_i = node_mass * mass_share_i.
+  // Cold data, read only when a material is applied.
+  std::vector<double> mass_share;
 
   // Builds the layers from a topology: one spring per SpringSpec (rest length from
   // the rest positions), the material's constants as initial weights.

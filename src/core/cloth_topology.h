@@ -37,4 +37,8 @@ struct SpringFamilies {
   bool bend = true;
 };
 
+// The cloth area each node stands for: a third of every triangle it belongs to
+// (lumped). 0 for a node in no triangle (e.g. a one-column chain).
+std::vector<double> lumped_node_areas(const ClothTopology& topology);
+
 }  // namespace neurocloth

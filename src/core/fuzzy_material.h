@@ -36,6 +36,9 @@ class FuzzyMaterial {
   // The outputs every material rule base must define.
   static constexpr const char* kOutputs[] = {"spring_constant", "node_mass", "viscosity",
                                              "friction"};
+  // node_mass is the mass of this much cloth (a node of a 5 cm grid), m^2;
+  // scenes give each node its lumped share (Scene::build_network).
+  static constexpr double kReferenceNodeArea = 0.0025;
 
   // Throws InputError (naming `source`) when an output is missing or its range
   // admits values the network cannot take (node_mass <= 0, negative constants).

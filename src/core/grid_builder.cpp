@@ -32,6 +32,18 @@ void add_family(ClothTopology& t, int dr, int dc, int c_offset, SpringFamily fam
 }
 }  // namespace
 
+std::vector<double> lumped_node_areas(const ClothTopology& t) {
+  std::vector<double> area(t.rest_positions.size(), 0.0);
+  for (const auto& tri : t.triangles) {
+    const Vec3& a = t.rest_positions[tri[0]];
+    const double third =
+        0.5 * (t.rest_positions[tri[1]] - a).cross(t.rest_positions[tri[2]] - a).norm() / 3.0;
+    for (int k : tri)
+      area[k] += third;
+  }
+  return area;
+}
+
 ClothTopology build_grid(const GridSpec& spec) {
   if (spec.rows < 1 || spec.cols < 1) throw std::invalid_argument("rows and cols must be >= 1");
   if (!(spec.spacing > 0.0)) throw std::invalid_argument("spacing must be > 0");

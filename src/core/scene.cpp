@@ -274,6 +274,17 @@ Scene load_scene(const std::string& path) {
 
 ClothNetwork Scene::build_network() const {
   ClothNetwork net = ClothNetwork::build(topology, material, spring_function);
+  // A rule base's node_mass is the mass of kReferenceNodeArea of cloth: each
+  // node carries its lumped share, so the material weighs the same at any
+  // resolution (explicit materials give kg per node and are left as written).
+  if (fuzzy_material) {
+    const std::vector<double> area = lumped_node_areas(topology);
+    if (std::all_of(area.begin(), area.end(), [](double a) { return a > 0; })) {
+      for (std::size_t i = 0; i < area.size(); ++i)
+        net.mass_share[i] = area[i] / FuzzyMaterial::kReferenceNodeArea;
+      net.apply_material(material);
+    }
+  }
   net.gravity = gravity;
   for (int p : pins)
     net.set_pinned(p, true);
