@@ -14,14 +14,7 @@ namespace neurocloth {
 namespace {
 
 Scene resized(int n) {
-  Scene scene = load_scene(assets_directory() + "/scenes/hanging.json");
-  GridSpec g = *scene.grid;
-  g.spacing *= static_cast<double>(g.cols - 1) / (n - 1);
-  g.rows = g.cols = n;
-  scene.grid = g;
-  scene.topology = build_grid(g);
-  scene.pins = {0, n - 1};
-  return scene;
+  return resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), n);
 }
 
 void BM_Step(benchmark::State& st) {

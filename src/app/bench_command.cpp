@@ -24,14 +24,7 @@ double median(std::vector<double> v) {
 }
 
 Scene bench_scene(int size, IntegratorKind integrator) {
-  Scene scene = load_scene(assets_directory() + "/scenes/hanging.json");
-  GridSpec g = scene.grid.value();
-  g.spacing *= static_cast<double>(std::max(g.cols, g.rows) - 1) / std::max(1, size - 1);
-  g.rows = g.cols = size;
-  g.families = SpringFamilies{};
-  scene.grid = g;
-  scene.topology = build_grid(g);
-  scene.pins = {0, size - 1};
+  Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), size);
   scene.solver.integrator = integrator;
   scene.solver.adaptive = false;
   return scene;

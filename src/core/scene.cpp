@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "fuzzy_material.h"
 #include "grid_builder.h"
@@ -270,6 +271,20 @@ Scene load_scene(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   return parse_scene(text.str(), path);
+}
+
+Scene resized_grid(const Scene& scene, int n) {
+  if (!scene.grid || n < 2)
+    throw std::invalid_argument("resized_grid needs a grid scene and n >= 2");
+  Scene s = scene;
+  GridSpec g = *scene.grid;
+  g.spacing *= static_cast<double>(std::max(g.cols, g.rows) - 1) / (n - 1);
+  g.rows = g.cols = n;
+  g.families = SpringFamilies{};
+  s.grid = g;
+  s.topology = build_grid(g);
+  s.pins = {0, n - 1};
+  return s;
 }
 
 ClothNetwork Scene::build_network() const {

@@ -105,8 +105,8 @@ void Simulation::ensure_front_forces() {
   front_forces_valid_ = true;
 }
 
-void Simulation::accept(double h) {
-  std::swap(front_, back_);
+void Simulation::accept(double h, bool result_in_back) {
+  if (result_in_back) std::swap(front_, back_);
   time_ += h;
   ++steps_;
   ++steps_since_check_;
@@ -126,8 +126,7 @@ void Simulation::fixed_step(double h) {
   force_evaluations_ += r.force_evaluations;
   cg_iterations_ += r.cg_iterations;
   front_forces_valid_ = false;
-  if (out == front_) std::swap(front_, back_);  // accept() swaps back
-  accept(h);
+  accept(h, out == back_);
   after_accept(false);
 }
 

@@ -76,7 +76,8 @@ class Simulation {
   void fixed_step(double h);
   void adaptive_frame(double frame_end);
   void ensure_front_forces();
-  void accept(double h);
+  // The step's result is in the back buffer (swap it in) or already in front.
+  void accept(double h, bool result_in_back = true);
   void after_accept(bool force_check);
   void run_check();
   bool advance_ramp();
