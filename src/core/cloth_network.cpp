@@ -211,6 +211,10 @@ void ClothNetwork::net_forces(const ClothState& s, NodeVectors& F) const {
     propagate_all<SpringFunctionKind::linear>(*this, s, F);
   else
     propagate_all<SpringFunctionKind::stiffening>(*this, s, F);
+  for (const auto& m : force_modules) {
+    ScopedModuleTimer timer(m->clock);
+    m->add_forces(*this, s, F);
+  }
 }
 
 int ClothNetwork::degenerate_springs(const ClothState& s) const {

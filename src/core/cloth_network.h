@@ -4,12 +4,14 @@
 // The network is the model (parameters); the neuron outputs that change every
 // step live in ClothState, and scratch activations in SpringActivations, so a
 // const network can be evaluated on any state (RK4 stages, learning, rollback).
+#include <memory>
 #include <vector>
 
 #include "cloth_state.h"
 #include "cloth_topology.h"
 #include "mass_layer.h"
 #include "material.h"
+#include "modules/scene_module.h"
 #include "spring_layer.h"
 
 namespace neurocloth {
@@ -45,6 +47,10 @@ class ClothNetwork {
   // scene says otherwise): apply_material() sets m_i = node_mass * mass_share_i.
   // Cold data, read only when a material is applied.
   std::vector<double> mass_share;
+  // The scene's force modules (air drag, wind): more inputs to the acceleration
+  // neurons, evaluated with the springs. Empty unless the scene declares them;
+  // shared, because a copy of the network (a ramp target) is the same scene.
+  std::vector<std::shared_ptr<ForceModule>> force_modules;
 
   // Builds the layers from a topology: one spring per SpringSpec (rest length from
   // the rest positions), the material's constants as initial weights.
@@ -59,7 +65,8 @@ class ClothNetwork {
   void apply_material(const Material& material);
 
   // Propagates the spring layer and sums its outputs into the acceleration
-  // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1). Allocates nothing.
+  // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1), plus whatever the
+  // force modules add. Allocates nothing.
   // A spring shorter than kMinSpringLength contributes no force (no direction).
   void net_forces(const ClothState& state, NodeVectors& force) const;
   // How many springs are that short at `state` (a diagnostic, off the hot path).

@@ -11,6 +11,8 @@
 #include "grid_builder.h"
 #include "json_fields.h"
 #include "linguistic_material_json.h"
+#include "modules/module_reader.h"
+#include "modules/module_set.h"
 #include "obj_mesh_builder.h"
 
 namespace neurocloth {
@@ -106,27 +108,8 @@ std::vector<int> read_pins(const JsonFields& in, const json& cloth, const ClothT
   const json& list = cloth.at("pins");
   const std::string field = "cloth.pins";
   if (!list.is_array()) in.fail(field, "expected an array of [row, col] pairs or node indices");
-  const int nodes = static_cast<int>(t.rest_positions.size());
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string f = JsonLocator::element(field, i);
-    int node;
-    if (list[i].is_array()) {
-      if (t.rows == 0) in.fail(f, "a mesh cloth pins by node index, not [row, col]");
-      if (list[i].size() != 2) in.fail(f, "expected [row, col]");
-      const int r = in.integer(list[i][0], JsonLocator::element(f, 0));
-      const int c = in.integer(list[i][1], JsonLocator::element(f, 1));
-      if (r < 0 || r >= t.rows || c < 0 || c >= t.cols)
-        in.fail(f, "pin [" + std::to_string(r) + ", " + std::to_string(c) + "] is outside the " +
-                       std::to_string(t.rows) + "x" + std::to_string(t.cols) + " grid");
-      node = r * t.cols + c;
-    } else {
-      node = in.integer(list[i], f);
-      if (node < 0 || node >= nodes)
-        in.fail(f, "node " + std::to_string(node) + " does not exist (the cloth has " +
-                       std::to_string(nodes) + " nodes)");
-    }
-    pins.push_back(node);
-  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    pins.push_back(read_node_ref(in, list[i], JsonLocator::element(field, i), t));
   return pins;
 }
 
@@ -239,7 +222,8 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
 Scene parse_scene(const std::string& text, const std::string& path) {
   const JsonFields in(text, path);
   const json& root = in.root();
-  in.allow_only(root, "", {"name", "description", "cloth", "material", "gravity", "solver"});
+  in.allow_only(root, "",
+                {"name", "description", "cloth", "material", "gravity", "solver", "modules"});
   Scene scene;
   scene.path = path;
   scene.name =
@@ -262,6 +246,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   scene.material = read_material(in, root, scene.fuzzy_material);
   if (in.has(root, "gravity")) scene.gravity = in.vec3(root.at("gravity"), "gravity");
   scene.solver = read_solver(in, root);
+  if (in.has(root, "modules"))
+    scene.modules = read_modules(in, root.at("modules"), scene.topology, scene.pins);
   return scene;
 }
 
@@ -304,6 +290,14 @@ ClothNetwork Scene::build_network() const {
   for (int p : pins)
     net.set_pinned(p, true);
   return net;
+}
+
+Simulation Scene::make_simulation() const {
+  ClothNetwork net = build_network();
+  if (modules.empty()) return Simulation(std::move(net), initial_state(), solver);
+  ModuleSet set = build_modules(modules, topology);
+  net.force_modules = std::move(set.forces);
+  return Simulation(std::move(net), initial_state(), solver, std::move(set.constraints));
 }
 
 ClothState Scene::initial_state() const {

@@ -11,6 +11,7 @@
 #include "asset_paths.h"
 #include "cloth_network.h"
 #include "grid_builder.h"
+#include "modules/module_specs.h"
 #include "simulation.h"
 #include "solver_settings.h"
 
@@ -34,12 +35,14 @@ struct Scene {
   SpringFunction spring_function;
   Vec3 gravity = Vec3(0, -9.81, 0);
   SolverSettings solver;
+  // The declared modules, in file order; none unless the file has "modules".
+  std::vector<ModuleDeclaration> modules;
 
+  // The bare network: springs, masses, gravity, pins (no modules).
   ClothNetwork build_network() const;
   ClothState initial_state() const;  // rest positions, zero velocity
-  Simulation make_simulation() const {
-    return Simulation(build_network(), initial_state(), solver);
-  }
+  // The network with the scene's modules built and attached: what to run.
+  Simulation make_simulation() const;
 };
 
 // The same cloth (width, material, solver) on an n x n grid with all three

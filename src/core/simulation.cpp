@@ -12,10 +12,13 @@ const char* to_string(RunStatus s) {
   return s == RunStatus::ok ? "ok" : "diverged";
 }
 
-Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings settings)
+Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
+                       std::vector<std::unique_ptr<ConstraintModule>> constraints)
     : net_(std::move(network)),
       settings_(settings),
       integrator_(make_integrator(settings.integrator, net_)),
+      constraints_(std::move(constraints)),
+      in_place_(integrator_->steps_in_place() && constraints_.empty()),
       a_(initial),
       b_(initial),
       checkpoint_(initial),
@@ -99,6 +102,31 @@ RunStatus Simulation::advance(double seconds) {
   return status_;
 }
 
+void Simulation::begin_step() {
+  for (const auto& m : net_.force_modules)
+    m->begin_step(time_);
+}
+
+void Simulation::constrain(ClothState& after, double h) {
+  const StepSpan span{time_, h};
+  for (const auto& c : constraints_) {
+    ScopedModuleTimer timer(c->clock);
+    c->apply(net_, span, *front_, after);
+  }
+}
+
+std::vector<ModuleReport> Simulation::module_reports() const {
+  std::vector<ModuleReport> out;
+  auto add = [&](const SceneModule& m) {
+    out.push_back({m.type(), m.declaration, m.clock.seconds, m.clock.calls, m.state_bytes()});
+  };
+  for (const auto& m : net_.force_modules)
+    add(*m);
+  for (const auto& c : constraints_)
+    add(*c);
+  return out;
+}
+
 void Simulation::ensure_front_forces() {
   if (front_forces_valid_) return;
   net_.net_forces(*front_, *force_front_);
@@ -118,11 +146,13 @@ void Simulation::after_accept(bool force_check) {
 
 void Simulation::fixed_step(double h) {
   advance_ramp();
+  begin_step();
   ensure_front_forces();
   // A fixed step is never rejected, so an integrator that can may write over
   // the current state (the checkpoint still guards against divergence).
-  ClothState* out = integrator_->steps_in_place() ? front_ : back_;
+  ClothState* out = in_place_ ? front_ : back_;
   const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *out);
+  constrain(*out, h);
   force_evaluations_ += r.force_evaluations;
   cg_iterations_ += r.cg_iterations;
   front_forces_valid_ = false;
@@ -145,10 +175,12 @@ void Simulation::adaptive_frame(double frame_end) {
       floor = cap * A.min_step_fraction;
       tc = std::min(tc, cap);
     }
+    begin_step();
     ensure_front_forces();
     if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
     const double h = std::min(tc, frame_end - time_);
     const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *back_);
+    constrain(*back_, h);
     net_.net_forces(*back_, *force_back_);
     force_evaluations_ += r.force_evaluations + 1;
     cg_iterations_ += r.cg_iterations;

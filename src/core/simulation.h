@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cloth_network.h"
 #include "divergence_monitor.h"
@@ -21,6 +22,15 @@ enum class RunStatus { ok, diverged };
 const char* to_string(RunStatus s);
 
 // One trial step of the adaptive propagation, for tests and diagnostics.
+// What one active module has cost so far.
+struct ModuleReport {
+  std::string type;
+  std::string declaration;  // the scene's JSON for it
+  double seconds = 0;       // wall time inside the module
+  long calls = 0;
+  std::size_t state_bytes = 0;
+};
+
 struct StepEvent {
   double time;  // time at the start of the trial
   double tc;    // the time constant t_c tried
@@ -33,7 +43,10 @@ struct StepEvent {
 
 class Simulation {
  public:
-  Simulation(ClothNetwork network, ClothState initial, SolverSettings settings);
+  // `constraints` run after every integrator step, in order (see ConstraintModule);
+  // force modules travel inside the network.
+  Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
+             std::vector<std::unique_ptr<ConstraintModule>> constraints = {});
 
   // Propagates `seconds` of simulated time (0 does nothing). Stops early, with
   // the last good state, when the run diverges. The full check (finite state,
@@ -68,12 +81,19 @@ class Simulation {
   double step_cap();
   Energy energy() const { return net_.energy(*front_); }
 
+  // The active modules (force modules first, then constraints in run order).
+  std::vector<ModuleReport> module_reports() const;
+  std::size_t module_count() const { return net_.force_modules.size() + constraints_.size(); }
+
   void set_observer(std::function<void(const StepEvent&)> observer) {
     observer_ = std::move(observer);
   }
 
  private:
   void fixed_step(double h);
+  // The modules' hooks around one integrator step from *front_ (at time_) over h.
+  void begin_step();
+  void constrain(ClothState& after, double h);
   void adaptive_frame(double frame_end);
   void ensure_front_forces();
   // The step's result is in the back buffer (swap it in) or already in front.
@@ -85,6 +105,9 @@ class Simulation {
   ClothNetwork net_;
   SolverSettings settings_;
   std::unique_ptr<Integrator> integrator_;
+  std::vector<std::unique_ptr<ConstraintModule>> constraints_;
+  // A fixed step may overwrite its input unless a constraint needs the state it started from.
+  bool in_place_ = false;
   ClothState a_, b_, checkpoint_;
   ClothState* front_ = &a_;
   ClothState* back_ = &b_;

@@ -1,0 +1,31 @@
+#pragma once
+// One factory per module type; each lives in the file named after its module.
+#include <memory>
+
+#include "../cloth_topology.h"
+#include "module_specs.h"
+#include "scene_module.h"
+
+namespace neurocloth {
+
+// colliders.cpp: contact with Coulomb friction against a solid shape.
+std::unique_ptr<ConstraintModule> make_collider(const PlaneSpec& spec);
+std::unique_ptr<ConstraintModule> make_collider(const BoxSpec& spec);
+std::unique_ptr<ConstraintModule> make_collider(const SphereSpec& spec);
+std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec& spec);
+
+// air.cpp
+std::shared_ptr<ForceModule> make_air_drag(const AirDragSpec& spec);
+std::shared_ptr<ForceModule> make_wind(const WindSpec& spec, const ClothTopology& topology);
+
+// strain_limit.cpp
+std::unique_ptr<ConstraintModule> make_strain_limit(const StrainLimitSpec& spec,
+                                                    const ClothTopology& topology);
+// self_collision.cpp
+std::unique_ptr<ConstraintModule> make_self_collision(const SelfCollisionSpec& spec,
+                                                      const ClothTopology& topology);
+// pin_motion.cpp
+std::unique_ptr<ConstraintModule> make_pin_motion(const PinMotionSpec& spec,
+                                                  const ClothTopology& topology);
+
+}  // namespace neurocloth

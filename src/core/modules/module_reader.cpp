@@ -1,0 +1,289 @@
+#include "module_reader.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+
+namespace neurocloth {
+using nlohmann::json;
+
+namespace {
+
+// Reads the keys of one module object; `field` is "modules[i]".
+class ModuleFields {
+ public:
+  ModuleFields(const JsonFields& in, const json& obj, std::string field)
+      : in_(in), obj_(obj), field_(std::move(field)) {}
+
+  std::string at(const char* key) const { return JsonLocator::member(field_, key); }
+  bool has(const char* key) const { return in_.has(obj_, key); }
+  [[noreturn]] void fail(const char* key, const std::string& message) const {
+    in_.fail(at(key), message);
+  }
+  double number(const char* key, double fallback) const {
+    return has(key) ? in_.number(obj_.at(key), at(key)) : fallback;
+  }
+  double required_number(const char* key) const {
+    return in_.number(in_.member(obj_, field_, key), at(key));
+  }
+  int integer(const char* key, int fallback) const {
+    return has(key) ? in_.integer(obj_.at(key), at(key)) : fallback;
+  }
+  Vec3 vec3(const char* key, const Vec3& fallback) const {
+    return has(key) ? in_.vec3(obj_.at(key), at(key)) : fallback;
+  }
+  Vec3 required_vec3(const char* key) const {
+    return in_.vec3(in_.member(obj_, field_, key), at(key));
+  }
+  double at_least(const char* key, double fallback, double low, bool strict) const {
+    const double v = number(key, fallback);
+    if (strict ? !(v > low) : !(v >= low))
+      fail(key, std::string("must be ") + (strict ? "> " : ">= ") + format(low) + " (got " +
+                    format(v) + ")");
+    return v;
+  }
+  static std::string format(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+  }
+  const JsonFields& in() const { return in_; }
+  const json& obj() const { return obj_; }
+  const std::string& field() const { return field_; }
+
+ private:
+  const JsonFields& in_;
+  const json& obj_;
+  std::string field_;
+};
+
+ContactSpec read_contact(const ModuleFields& m) {
+  ContactSpec c;
+  c.thickness = m.at_least("thickness", c.thickness, 0.0, false);
+  if (m.has("friction")) c.friction = m.at_least("friction", 0.0, 0.0, false);
+  if (m.has("static_friction")) {
+    c.static_friction = m.at_least("static_friction", 0.0, 0.0, false);
+    if (c.friction && *c.static_friction < *c.friction)
+      m.fail("static_friction", "must be >= friction (" + ModuleFields::format(*c.friction) +
+                                    "): a contact cannot stick more weakly than it slides");
+  }
+  return c;
+}
+
+#define CONTACT_KEYS "thickness", "friction", "static_friction"
+
+ModuleSpec read_plane(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "point", "normal", CONTACT_KEYS});
+  PlaneSpec s;
+  s.point = m.vec3("point", s.point);
+  s.normal = m.vec3("normal", s.normal);
+  if (!(s.normal.norm() > 0)) m.fail("normal", "must not be zero");
+  s.normal.normalize();
+  s.contact = read_contact(m);
+  return s;
+}
+
+ModuleSpec read_box(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "center", "size", CONTACT_KEYS});
+  BoxSpec s;
+  s.center = m.required_vec3("center");
+  const Vec3 size = m.required_vec3("size");
+  if (!(size.minCoeff() > 0))
+    m.fail("size", "every side must be > 0 (got [" + ModuleFields::format(size.x()) + ", " +
+                       ModuleFields::format(size.y()) + ", " + ModuleFields::format(size.z()) +
+                       "])");
+  s.half_extents = 0.5 * size;
+  s.contact = read_contact(m);
+  return s;
+}
+
+ModuleSpec read_sphere(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "center", "radius", CONTACT_KEYS});
+  SphereSpec s;
+  s.center = m.required_vec3("center");
+  m.required_number("radius");
+  s.radius = m.at_least("radius", 0, 0.0, true);
+  s.contact = read_contact(m);
+  return s;
+}
+
+ModuleSpec read_capsule(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "a", "b", "radius", CONTACT_KEYS});
+  CapsuleSpec s;
+  s.a = m.required_vec3("a");
+  s.b = m.required_vec3("b");
+  m.required_number("radius");
+  s.radius = m.at_least("radius", 0, 0.0, true);
+  s.contact = read_contact(m);
+  return s;
+}
+
+ModuleSpec read_air_drag(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "rate"});
+  AirDragSpec s;
+  m.required_number("rate");
+  s.rate = m.at_least("rate", 0, 0.0, false);
+  return s;
+}
+
+ModuleSpec read_wind(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(),
+                    {"type", "velocity", "density", "drag", "lift", "skin", "gust"});
+  WindSpec s;
+  s.velocity = m.required_vec3("velocity");
+  s.density = m.at_least("density", s.density, 0.0, false);
+  s.drag = m.at_least("drag", s.drag, 0.0, false);
+  s.lift = m.at_least("lift", s.lift, 0.0, false);
+  s.skin = m.at_least("skin", s.skin, 0.0, false);
+  if (m.has("gust")) {
+    const ModuleFields g(m.in(), m.obj().at("gust"), m.at("gust"));
+    m.in().require_object(g.obj(), g.field());
+    m.in().allow_only(g.obj(), g.field(), {"amplitude", "period"});
+    s.gust.amplitude = g.at_least("amplitude", s.gust.amplitude, 0.0, false);
+    s.gust.period = g.at_least("period", s.gust.period, 0.0, true);
+  }
+  return s;
+}
+
+ModuleSpec read_strain_limit(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(),
+                    {"type", "max_stretch", "families", "iterations", "tolerance"});
+  StrainLimitSpec s;
+  m.required_number("max_stretch");
+  s.max_stretch = m.at_least("max_stretch", 0, 1.0, false);
+  if (m.has("families")) {
+    const json& list = m.obj().at("families");
+    if (!list.is_array() || list.empty())
+      m.fail("families", "expected a non-empty array of spring families");
+    s.structural = s.shear = s.bend = false;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string f = JsonLocator::element(m.at("families"), i);
+      const std::string name = m.in().string(list[i], f);
+      if (name == "structural")
+        s.structural = true;
+      else if (name == "shear")
+        s.shear = true;
+      else if (name == "bend")
+        s.bend = true;
+      else
+        m.in().fail(f, "unknown spring family '" + name + "' (expected structural, shear or bend)");
+    }
+  }
+  s.iterations = m.integer("iterations", s.iterations);
+  if (s.iterations < 1) m.fail("iterations", "must be >= 1");
+  s.tolerance = m.at_least("tolerance", s.tolerance, 0.0, false);
+  return s;
+}
+
+ModuleSpec read_self_collision(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "thickness", "iterations"});
+  SelfCollisionSpec s;
+  s.thickness = m.at_least("thickness", s.thickness, 0.0, true);
+  s.iterations = m.integer("iterations", s.iterations);
+  if (s.iterations < 1) m.fail("iterations", "must be >= 1");
+  return s;
+}
+
+ModuleSpec read_pin_motion(const ModuleFields& m, const ClothTopology& topology,
+                           std::vector<int>& pins) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "nodes", "keyframes", "amplitude", "frequency"});
+  PinMotionSpec s;
+  if (m.has("nodes")) {
+    const json& list = m.obj().at("nodes");
+    if (!list.is_array() || list.empty())
+      m.fail("nodes", "expected a non-empty array of [row, col] pairs or node indices");
+    for (std::size_t i = 0; i < list.size(); ++i)
+      s.nodes.push_back(
+          read_node_ref(m.in(), list[i], JsonLocator::element(m.at("nodes"), i), topology));
+  } else {
+    if (pins.empty()) m.fail("nodes", "missing: the scene has no pins to move");
+    s.nodes = pins;
+  }
+  const bool keys = m.has("keyframes"), sine = m.has("amplitude") || m.has("frequency");
+  if (keys == sine)
+    m.in().fail(m.field(), "needs either 'keyframes' or 'amplitude' and 'frequency'");
+  if (keys) {
+    const json& list = m.obj().at("keyframes");
+    if (!list.is_array() || list.empty())
+      m.fail("keyframes", "expected a non-empty array of {\"t\": seconds, \"offset\": [x, y, z]}");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const ModuleFields k(m.in(), list[i], JsonLocator::element(m.at("keyframes"), i));
+      m.in().require_object(k.obj(), k.field());
+      m.in().allow_only(k.obj(), k.field(), {"t", "offset"});
+      const double t = k.required_number("t");
+      if (t < 0) k.fail("t", "must be >= 0");
+      if (!s.keyframes.empty() && !(t > s.keyframes.back().first))
+        k.fail("t", "keyframe times must increase");
+      s.keyframes.emplace_back(t, k.required_vec3("offset"));
+    }
+  } else {
+    s.amplitude = m.required_vec3("amplitude");
+    m.required_number("frequency");
+    s.frequency = m.at_least("frequency", 0, 0.0, false);
+  }
+  for (int n : s.nodes)
+    if (std::find(pins.begin(), pins.end(), n) == pins.end()) pins.push_back(n);
+  return s;
+}
+
+}  // namespace
+
+int read_node_ref(const JsonFields& in, const json& v, const std::string& f,
+                  const ClothTopology& t) {
+  const int nodes = static_cast<int>(t.rest_positions.size());
+  if (v.is_array()) {
+    if (t.rows == 0) in.fail(f, "a mesh cloth names nodes by index, not [row, col]");
+    if (v.size() != 2) in.fail(f, "expected [row, col]");
+    const int r = in.integer(v[0], JsonLocator::element(f, 0));
+    const int c = in.integer(v[1], JsonLocator::element(f, 1));
+    if (r < 0 || r >= t.rows || c < 0 || c >= t.cols)
+      in.fail(f, "[" + std::to_string(r) + ", " + std::to_string(c) + "] is outside the " +
+                     std::to_string(t.rows) + "x" + std::to_string(t.cols) + " grid");
+    return r * t.cols + c;
+  }
+  const int node = in.integer(v, f);
+  if (node < 0 || node >= nodes)
+    in.fail(f, "node " + std::to_string(node) + " does not exist (the cloth has " +
+                   std::to_string(nodes) + " nodes)");
+  return node;
+}
+
+std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& modules,
+                                            const ClothTopology& topology,
+                                            std::vector<int>& pins) {
+  if (!modules.is_array()) in.fail("modules", "expected an array of module objects");
+  std::vector<ModuleDeclaration> out;
+  for (std::size_t i = 0; i < modules.size(); ++i) {
+    const std::string field = JsonLocator::element("modules", i);
+    const json& obj = modules[i];
+    in.require_object(obj, field);
+    const std::string type = in.string(in.member(obj, field, "type"), field + ".type");
+    const ModuleFields m(in, obj, field);
+    ModuleSpec spec;
+    if (type == "plane")
+      spec = read_plane(m);
+    else if (type == "box")
+      spec = read_box(m);
+    else if (type == "sphere")
+      spec = read_sphere(m);
+    else if (type == "capsule")
+      spec = read_capsule(m);
+    else if (type == "air_drag")
+      spec = read_air_drag(m);
+    else if (type == "wind")
+      spec = read_wind(m);
+    else if (type == "strain_limit")
+      spec = read_strain_limit(m);
+    else if (type == "self_collision")
+      spec = read_self_collision(m);
+    else if (type == "pin_motion")
+      spec = read_pin_motion(m, topology, pins);
+    else
+      in.fail(field + ".type", "unknown module type '" + type + "' (expected one of: " +
+                                   module_type_names() + ")");
+    out.push_back({type, obj.dump(), std::move(spec)});
+  }
+  return out;
+}
+
+}  // namespace neurocloth

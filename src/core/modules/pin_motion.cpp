@@ -1,0 +1,81 @@
+// Pinned nodes that follow a path (a moving hanger, a curtain rail): after each
+// step their positions and velocities are set from the path at the step's end.
+// The integrators never move a pinned node by force, only by its velocity, so
+// setting the velocity too keeps the springs' damping and the next step right.
+#include <algorithm>
+#include <cmath>
+
+#include "../cloth_network.h"
+#include "module_factories.h"
+
+namespace neurocloth {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+class PinMotion final : public ConstraintModule {
+ public:
+  PinMotion(const PinMotionSpec& spec, const ClothTopology& topology) : spec_(spec) {
+    for (int n : spec.nodes)
+      base_.push_back(topology.rest_positions[static_cast<std::size_t>(n)]);
+  }
+  const char* type() const override { return "pin_motion"; }
+  Phase phase() const override { return prescribe; }
+  std::size_t state_bytes() const override {
+    return base_.size() * sizeof(Vec3) + spec_.nodes.size() * sizeof(int);
+  }
+
+  void apply(const ClothNetwork&, const StepSpan& span, const ClothState&,
+             ClothState& after) override {
+    const double t = span.t0 + span.h;
+    Vec3 offset, velocity;
+    path(t, offset, velocity);
+    for (std::size_t k = 0; k < spec_.nodes.size(); ++k) {
+      const auto n = static_cast<std::size_t>(spec_.nodes[k]);
+      after.set_position(n, base_[k] + offset);
+      after.set_velocity(n, velocity);
+    }
+  }
+
+ private:
+  // Offset and its rate at time t.
+  void path(double t, Vec3& offset, Vec3& velocity) const {
+    const auto& keys = spec_.keyframes;
+    if (keys.empty()) {
+      const double w = kTwoPi * spec_.frequency;
+      offset = spec_.amplitude * std::sin(w * t);
+      velocity = spec_.amplitude * (w * std::cos(w * t));
+      return;
+    }
+    velocity = Vec3::Zero();
+    if (t <= keys.front().first) {
+      offset = keys.front().second;  // held before the first key
+      return;
+    }
+    if (t >= keys.back().first) {
+      offset = keys.back().second;  // and after the last
+      return;
+    }
+    // The segment (t_k, t_k+1] holding t: a step that ends on a key used that
+    // segment's rate on its way there.
+    const auto next = std::lower_bound(keys.begin(), keys.end(), t,
+                                       [](const auto& key, double v) { return key.first < v; });
+    const auto prev = next - 1;
+    const double span = next->first - prev->first;
+    const double s = (t - prev->first) / span;
+    offset = (1 - s) * prev->second + s * next->second;
+    velocity = (next->second - prev->second) / span;
+  }
+
+  PinMotionSpec spec_;
+  std::vector<Vec3> base_;  // rest positions of spec_.nodes
+};
+
+}  // namespace
+
+std::unique_ptr<ConstraintModule> make_pin_motion(const PinMotionSpec& spec,
+                                                  const ClothTopology& topology) {
+  return std::make_unique<PinMotion>(spec, topology);
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,1 @@
+// Tests of the pin_motion module (being written).

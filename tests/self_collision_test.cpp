@@ -1,0 +1,1 @@
+// Tests of the self_collision module (being written).

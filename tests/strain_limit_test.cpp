@@ -1,0 +1,1 @@
+// Tests of the strain_limit module (being written).
