@@ -250,6 +250,41 @@ TEST_F(Cli, RelaxWithBadSceneWritesNothing) {
   expect_input_error({"relax", path, "--out", result_path()}, {path, "material.node_mass"});
 }
 
+TEST_F(Cli, SimulateReportsTheActiveModulesAndTheirTime) {
+  const Outcome r =
+      run({"simulate", scene_asset("curtain"), "--seconds", "0.2", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const json doc = read_result();
+  const json& modules = doc.at("modules");
+  ASSERT_EQ(modules.size(), 3u);
+  std::vector<std::string> types;
+  double sum = 0;
+  for (const json& m : modules) {
+    types.push_back(m.at("type"));
+    EXPECT_GT(m.at("calls").get<long>(), 0) << m.dump();
+    EXPECT_GE(m.at("seconds").get<double>(), 0.0);
+    EXPECT_EQ(m.at("declaration").at("type"), m.at("type"));
+    sum += m.at("seconds").get<double>();
+    EXPECT_NE(r.out.find("module " + types.back()), std::string::npos) << r.out;
+  }
+  // Force modules first, then the constraints in the order the step runs them.
+  EXPECT_EQ(types, (std::vector<std::string>{"air_drag", "pin_motion", "strain_limit"}));
+  EXPECT_DOUBLE_EQ(doc.at("module_seconds").get<double>(), sum);
+  EXPECT_LE(sum, doc.at("wall_seconds").get<double>());
+
+  const Outcome bare =
+      run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--out", result_path()});
+  ASSERT_EQ(bare.code, kOk) << bare.err;
+  EXPECT_EQ(read_result().at("modules"), json::array());
+}
+
+TEST_F(Cli, SimulateWithABadModuleNamesFileAndField) {
+  const std::string path =
+      write("bad.json", with(read_text(scene_asset("table_drape")), R"("type": "box")",
+                             R"("type": "box", "friction": -1)"));
+  expect_input_error({"simulate", path, "--out", result_path()}, {path, "modules[0].friction"});
+}
+
 TEST_F(Cli, UnwritableOutputNamesThePath) {
   const std::string out = (dir_ / "no_such_dir" / "result.json").string();
   const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0", "--out", out});

@@ -1,1 +1,175 @@
-// Tests of the scene_modules module (being written).
+// The "modules" part of a scene file: what gets built, in which order, what a
+// scene without modules carries (nothing), and the errors bad declarations get.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene.h"
+#include "scene_test_support.h"
+#include "test_support.h"
+
+namespace neurocloth {
+namespace {
+
+// A small scene whose modules array is line 8 onwards, one module per line.
+std::string scene_with(const std::string& modules) {
+  return R"({
+  "cloth": {
+    "grid": { "rows": 4, "cols": 4, "spacing": 0.1 },
+    "pins": [[0, 0]]
+  },
+  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
+  "solver": { "integrator": "network", "dt": 0.001 },
+  "modules": [
+)" + modules +
+         R"(
+  ]
+})";
+}
+
+void expect_module_error(const std::string& module_line, const std::string& field,
+                         const std::string& message_part) {
+  const std::string path = test::scratch_path("bad_module.json");
+  const auto e = test::parse_error(scene_with(module_line), path);
+  if (!e) return;
+  test::expect_names(*e, path, field, 9);
+  EXPECT_NE(std::string(e->what()).find(message_part), std::string::npos) << e->what();
+}
+
+TEST(SceneModules, ASceneWithoutModulesCarriesNone) {
+  const Scene scene = test::asset_scene("hanging");
+  EXPECT_TRUE(scene.modules.empty());
+  Simulation sim = scene.make_simulation();
+  EXPECT_EQ(sim.module_count(), 0u);
+  EXPECT_TRUE(sim.module_reports().empty());
+  EXPECT_EQ(sim.network().force_modules.capacity(), 0u);  // not even an empty allocation
+  sim.advance(0.01);
+  EXPECT_TRUE(sim.module_reports().empty());
+}
+
+TEST(SceneModules, DeclaredModulesAreBuiltOnceAndReportTheirCost) {
+  Simulation sim = parse_scene(scene_with(R"(
+    {"type": "plane", "point": [0, -5, 0]},
+    {"type": "strain_limit", "max_stretch": 1.2},
+    {"type": "pin_motion", "amplitude": [0.1, 0, 0], "frequency": 1})"),
+                               "t.json")
+                       .make_simulation();
+  sim.advance(0.01);
+  const auto reports = sim.module_reports();
+  ASSERT_EQ(reports.size(), 3u);
+  // Constraints run by phase, not declaration order: motion, limits, contact.
+  EXPECT_EQ(reports[0].type, "pin_motion");
+  EXPECT_EQ(reports[1].type, "strain_limit");
+  EXPECT_EQ(reports[2].type, "plane");
+  for (const auto& r : reports) {
+    EXPECT_EQ(r.calls, 10) << r.type;  // once per step
+    EXPECT_GE(r.seconds, 0.0);
+    EXPECT_NE(r.declaration.find("\"type\":\"" + r.type + "\""), std::string::npos);
+  }
+  EXPECT_GT(reports[1].state_bytes, 0u);
+}
+
+TEST(SceneModules, EveryShippedModuleSceneRuns) {
+  for (const char* name : {"table_drape", "table_drape_damping005", "table_drape_damping003",
+                           "table_drape_dt001", "flag", "sphere_drop", "curtain"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = test::asset_scene(name);
+    EXPECT_FALSE(scene.modules.empty());
+    ASSERT_TRUE(scene.grid.has_value());
+    EXPECT_EQ(scene.gravity, Vec3(0, -9.81, 0));  // y up
+    Simulation sim = scene.make_simulation();
+    EXPECT_EQ(sim.module_count(), scene.modules.size());
+    sim.advance(0.1);
+    EXPECT_EQ(sim.check_now(), RunStatus::ok);
+  }
+}
+
+TEST(SceneModules, TheTableDrapeHasThePapersParameters) {
+  const Scene s = test::asset_scene("table_drape");
+  EXPECT_EQ(s.grid->rows, s.grid->cols);  // square
+  EXPECT_DOUBLE_EQ(s.material.friction, 0.1);
+  EXPECT_DOUBLE_EQ(s.material.viscosity, 0.8);
+  EXPECT_DOUBLE_EQ(s.solver.dt, 0.04);
+  EXPECT_TRUE(s.solver.adaptive);  // the paper's step is the refresh interval of Table 1
+  EXPECT_EQ(test::asset_scene("table_drape_damping005").material.viscosity, 0.05);
+  EXPECT_EQ(test::asset_scene("table_drape_damping003").material.viscosity, 0.03);
+  EXPECT_EQ(test::asset_scene("table_drape_damping003").solver.dt, 0.03);
+  EXPECT_EQ(test::asset_scene("table_drape_dt001").solver.dt, 0.01);
+}
+
+TEST(SceneModules, ResizingKeepsModulesAndMovesTheNewPins) {
+  const Scene curtain = test::asset_scene("curtain");
+  const Scene small = resized_grid(curtain, 8);
+  ASSERT_EQ(small.modules.size(), curtain.modules.size());
+  EXPECT_EQ(std::get<PinMotionSpec>(small.modules[0].spec).nodes, small.pins);
+  Simulation sim = small.make_simulation();
+  sim.advance(1.0);
+  EXPECT_GT(sim.state().position(0).x(), curtain.topology.rest_positions[0].x());
+  EXPECT_TRUE(resized_grid(test::asset_scene("table_drape"), 8).pins.empty());
+}
+
+TEST(SceneModulesInput, UnknownType) {
+  expect_module_error(R"(    {"type": "tornado"})", "modules[0].type",
+                      "unknown module type 'tornado' (expected one of: plane, box");
+}
+
+TEST(SceneModulesInput, NegativeRadiusOrSize) {
+  expect_module_error(R"(    {"type": "sphere", "center": [0, 0, 0], "radius": -1})",
+                      "modules[0].radius", "must be > 0");
+  expect_module_error(R"(    {"type": "capsule", "a": [0, 0, 0], "b": [1, 0, 0], "radius": 0})",
+                      "modules[0].radius", "must be > 0");
+  expect_module_error(R"(    {"type": "box", "center": [0, 0, 0], "size": [1, -2, 1]})",
+                      "modules[0].size", "every side must be > 0");
+}
+
+TEST(SceneModulesInput, NegativeFriction) {
+  expect_module_error(R"(    {"type": "plane", "friction": -0.1})", "modules[0].friction",
+                      "must be >= 0");
+  expect_module_error(R"(    {"type": "plane", "friction": 0.5, "static_friction": 0.2})",
+                      "modules[0].static_friction", "must be >= friction");
+}
+
+TEST(SceneModulesInput, WrongTypes) {
+  expect_module_error(R"(    {"type": "sphere", "center": [0, 0, 0], "radius": "big"})",
+                      "modules[0].radius", "expected a number");
+  expect_module_error(R"(    {"type": "wind", "velocity": 5})", "modules[0].velocity", "expected");
+  expect_module_error(R"(    {"type": 3})", "modules[0].type", "expected a string");
+  expect_module_error(R"(    {"type": "strain_limit", "max_stretch": 1.1, "iterations": 2.5})",
+                      "modules[0].iterations", "expected an integer");
+  expect_module_error(R"(    "plane")", "modules[0]", "expected an object");
+}
+
+TEST(SceneModulesInput, MissingAndUnknownKeys) {
+  expect_module_error(R"(    {"center": [0, 0, 0]})", "modules[0].type", "missing required key");
+  expect_module_error(R"(    {"type": "sphere", "center": [0, 0, 0]})", "modules[0].radius",
+                      "missing required key");
+  expect_module_error(R"(    {"type": "plane", "radius": 1})", "modules[0].radius", "unknown key");
+  expect_module_error(R"(    {"type": "plane", "normal": [0, 0, 0]})", "modules[0].normal",
+                      "must not be zero");
+  expect_module_error(R"(    {"type": "strain_limit", "max_stretch": 0.9})",
+                      "modules[0].max_stretch", "must be >= 1");
+  expect_module_error(R"(    {"type": "wind", "velocity": [1, 0, 0], "gust": {"period": 0}})",
+                      "modules[0].gust.period", "must be > 0");
+  expect_module_error(
+      R"(    {"type": "pin_motion", "nodes": [[9, 9]], "amplitude": [1, 0, 0], "frequency": 1})",
+      "modules[0].nodes[0]", "outside the 4x4 grid");
+  expect_module_error(
+      R"(    {"type": "pin_motion", "keyframes": [{"t": 1, "offset": [0,0,0]}, {"t": 1, "offset": [1,0,0]}]})",
+      "modules[0].keyframes[1].t", "must increase");
+  expect_module_error(R"(    {"type": "pin_motion"})", "modules[0]", "needs either 'keyframes'");
+}
+
+TEST(SceneModulesInput, ModulesMustBeAnArray) {
+  const std::string path = test::scratch_path("bad_modules.json");
+  std::string text = scene_with(R"(    {"type": "plane"})");
+  text.replace(text.find("\"modules\": ["), 12, "\"modules\": {\"list\": [");
+  text.replace(text.rfind(']'), 1, "]}");
+  const auto e = test::parse_error(text, path);
+  if (e) {
+    EXPECT_EQ(e->field(), "modules");
+    EXPECT_NE(std::string(e->what()).find("expected an array"), std::string::npos) << e->what();
+  }
+}
+
+}  // namespace
+}  // namespace neurocloth

@@ -9,32 +9,17 @@
 #include <string>
 
 #include "input_error.h"
+#include "scene_test_support.h"
 #include "test_support.h"
 
 namespace neurocloth {
 namespace {
 namespace fs = std::filesystem;
-
-// Every error message is checked against a path that only exists in this test's
-// scratch folder, so a message that names some other file cannot pass by accident.
-// One folder per test: ctest runs tests in parallel, and two writing one file race.
-fs::path scratch() {
-  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(NEUROCLOTH_TEST_TMP) / "scene_test" / test->test_suite_name() / test->name();
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string scratch_path(const std::string& name) {
-  return (scratch() / name).string();
-}
-
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  ASSERT_TRUE(out) << path;
-  out << text;
-}
+using test::expect_names;
+using test::parse_error;
+using test::scratch;
+using test::scratch_path;
+using test::write_file;
 
 // A small valid grid scene. Each line holds one thing, so a test that breaks one
 // value knows the line the error must name.
@@ -60,34 +45,6 @@ std::string with(const std::string& from, const std::string& to,
   std::string s = base;
   s.replace(at, from.size(), to);
   return s;
-}
-
-// The InputError parse_scene throws, or nothing (and a failure) when it accepts the text.
-std::optional<InputError> parse_error(const std::string& text, const std::string& path) {
-  try {
-    parse_scene(text, path);
-  } catch (const InputError& e) {
-    return e;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got another exception: " << e.what();
-    return std::nullopt;
-  }
-  ADD_FAILURE() << "expected InputError, the scene was accepted:\n" << text;
-  return std::nullopt;
-}
-
-// The error names `field` in `path` at `line` (0: no line), in the accessors and in what().
-void expect_names(const InputError& e, const std::string& path, const std::string& field,
-                  int line) {
-  EXPECT_EQ(e.file(), path);
-  EXPECT_EQ(e.field(), field);
-  EXPECT_EQ(e.line(), line) << e.what();
-  const std::string what = e.what();
-  EXPECT_NE(what.find(path), std::string::npos) << what;
-  EXPECT_NE(what.find("'" + field + "'"), std::string::npos) << what;
-  if (line > 0) {
-    EXPECT_NE(what.find(path + ":" + std::to_string(line) + ":"), std::string::npos) << what;
-  }
 }
 
 void expect_grid_error(const std::string& text, const std::string& field, int line) {
@@ -233,10 +190,10 @@ TEST(SceneJson, LoadSceneReadsTheFileItNames) {
   EXPECT_EQ(scene.topology.rest_positions.size(), 15u);
 }
 
-TEST(SceneFields, MissingRequiredKeyNamesItWithoutALine) {
-  // A missing key has no line of its own.
-  expect_grid_error(with(R"("node_mass": 0.01, )", ""), "material.node_mass", 0);
-  expect_grid_error(with(R"("spacing": 0.1, )", ""), "cloth.grid.spacing", 0);
+TEST(SceneFields, MissingRequiredKeyNamesItAtTheLineOfItsObject) {
+  // A missing key has no line of its own: the error points at the object lacking it.
+  expect_grid_error(with(R"("node_mass": 0.01, )", ""), "material.node_mass", 8);
+  expect_grid_error(with(R"("spacing": 0.1, )", ""), "cloth.grid.spacing", 4);
 }
 
 TEST(SceneFields, MissingMaterialNamesIt) {
@@ -244,7 +201,7 @@ TEST(SceneFields, MissingMaterialNamesIt) {
       with(R"(  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
 )",
            ""),
-      "material", 0);
+      "material", 1);  // the root object lacks it
 }
 
 TEST(SceneFields, MistypedKeyIsUnknown) {

@@ -44,6 +44,22 @@ nlohmann::json simulation_result(const Simulation& sim, const std::string& scene
   doc["nodes"] = sim.network().node_count();
   doc["springs"] = sim.network().spring_count();
   doc["energy"] = energy_json(sim.energy());
+  // The modules the scene declared, in the order the step runs them, and what
+  // each cost: the rest of wall_seconds is the network itself.
+  nlohmann::json modules = nlohmann::json::array();
+  double module_seconds = 0;
+  for (const ModuleReport& m : sim.module_reports()) {
+    modules.push_back({{"type", m.type},
+                       {"seconds", m.seconds},
+                       {"calls", m.calls},
+                       {"state_bytes", m.state_bytes},
+                       {"declaration", m.declaration.empty()
+                                           ? nlohmann::json()
+                                           : nlohmann::json::parse(m.declaration, nullptr, false)}});
+    module_seconds += m.seconds;
+  }
+  doc["modules"] = modules;
+  doc["module_seconds"] = module_seconds;
   doc["positions"] = state_json(sim.state(), false);
   doc["velocities"] = state_json(sim.state(), true);
   return doc;

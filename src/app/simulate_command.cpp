@@ -46,6 +46,9 @@ int run_simulate(const SimulateOptions& o) {
   std::printf("  %zu nodes, %zu springs; energy: kinetic %.6g J, potential %.6g J, total %.6g J\n",
               sim.network().node_count(), sim.network().spring_count(), e.kinetic, e.potential(),
               e.total());
+  for (const ModuleReport& m : sim.module_reports())
+    std::printf("  module %-14s %8.3g s in %ld calls (%.3g us each)\n", m.type.c_str(), m.seconds,
+                m.calls, m.calls ? 1e6 * m.seconds / m.calls : 0.0);
   if (sim.status() != RunStatus::ok)
     std::printf("  diverged: %s; kept the last good state (t = %.4g s)\n",
                 sim.divergence_reason().c_str(), sim.time());

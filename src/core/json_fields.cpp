@@ -98,7 +98,11 @@ void JsonFields::allow_only(const nlohmann::json& obj, const std::string& field,
 const nlohmann::json& JsonFields::member(const nlohmann::json& obj, const std::string& field,
                                          const char* key) const {
   require_object(obj, field);
-  if (!obj.contains(key)) fail(JsonLocator::member(field, key), "missing required key");
+  if (!obj.contains(key)) {
+    // A missing key has no line of its own: point at the object that lacks it.
+    const auto [line, column] = locator_.find(field);
+    throw InputError(file_, JsonLocator::member(field, key), "missing required key", line, column);
+  }
   return obj.at(key);
 }
 

@@ -269,7 +269,10 @@ Scene resized_grid(const Scene& scene, int n) {
   g.families = SpringFamilies{};
   s.grid = g;
   s.topology = build_grid(g);
-  s.pins = {0, n - 1};
+  if (!scene.pins.empty()) s.pins = {0, n - 1};  // a free cloth (a drape) stays free
+  // Node indices of the old grid mean nothing on the new one: moving pins move the new pins.
+  for (ModuleDeclaration& m : s.modules)
+    if (auto* motion = std::get_if<PinMotionSpec>(&m.spec)) motion->nodes = s.pins;
   return s;
 }
 

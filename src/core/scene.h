@@ -46,8 +46,9 @@ struct Scene {
 };
 
 // The same cloth (width, material, solver) on an n x n grid with all three
-// spring families, pinned at the two corners of its first row: what the
-// benchmarks time at several sizes. `scene` must be a grid scene; n >= 2.
+// spring families, pinned (if it was pinned) at the two corners of its first row (which a
+// pin_motion module then moves), with the scene's modules: what the benchmarks
+// time at several sizes. `scene` must be a grid scene; n >= 2.
 Scene resized_grid(const Scene& scene, int n);
 
 // Throws InputError (file, field, line) for anything wrong; never returns a

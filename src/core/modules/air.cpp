@@ -1,8 +1,176 @@
-// Placeholder while the module is written (replaced before commit).
-#include <stdexcept>
+// The air around the cloth, as two force modules:
+//  - air_drag: linear damping of every node's absolute velocity, F_i = -rate m_i v_i,
+//    the cheap "the cloth moves through still air" of most cloth papers;
+//  - wind: a per-triangle aerodynamic force from the air velocity relative to the
+//    triangle (drag along the flow, lift across it), optionally gusting.
+// docs/scenes.md ("air_drag", "wind") gives the keys and the formulas.
+#include <cmath>
+#include <cstdint>
+#include <vector>
 
+#include "../cloth_network.h"
 #include "module_factories.h"
+
 namespace neurocloth {
-std::shared_ptr<ForceModule> make_air_drag(const AirDragSpec&) { throw std::logic_error("todo"); }
-std::shared_ptr<ForceModule> make_wind(const WindSpec&, const ClothTopology&) { throw std::logic_error("todo"); }
+namespace {
+
+class AirDrag final : public ForceModule {
+ public:
+  explicit AirDrag(const AirDragSpec& spec) : rate_(spec.rate) {}
+  const char* type() const override { return "air_drag"; }
+
+  void add_forces(const ClothNetwork& net, const ClothState& s, NodeVectors& F) const override {
+    // Masses are read from the network on every call, not cached: a material
+    // change or weight ramp rescales them between steps. Pinned nodes get the
+    // force too; the mass layer masks their acceleration, and skipping them
+    // would cost a branch in a loop that otherwise vectorises.
+    const std::size_t n = net.node_count();
+    const double* __restrict w = net.masses.inverse_mass.data();
+    const double* const v[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
+    double* const f[3] = {F.x.data(), F.y.data(), F.z.data()};
+    for (int c = 0; c < 3; ++c) {
+      const double* __restrict vc = v[c];
+      double* __restrict fc = f[c];
+#pragma GCC ivdep
+      for (std::size_t i = 0; i < n; ++i)
+        fc[i] -= rate_ * vc[i] / w[i];
+    }
+  }
+
+ private:
+  double rate_;
+};
+
+// The gust signal g(t) in [-1, 1]: three sines whose weights sum to 1, the
+// slowest with the declared period and the others faster by irrational ratios
+// (golden ratio, sqrt 7), so the pattern never repeats exactly and looks like
+// weather rather than a metronome. All start at 0: the wind begins at its mean.
+double gust_signal(double t, double period) {
+  constexpr double kTwoPi = 6.283185307179586;
+  constexpr double kGolden = 1.6180339887498949;
+  constexpr double kSqrt7 = 2.6457513110645907;
+  const double phase = kTwoPi * t / period;
+  return 0.5 * std::sin(phase) + 0.3 * std::sin(kGolden * phase) + 0.2 * std::sin(kSqrt7 * phase);
 }
+
+// Below these the force is zero to rounding (it scales with |u|^2, resp. the
+// area) and its direction is undefined, so the triangle is skipped rather than
+// divided by.
+constexpr double kMinSpeed2 = 1e-24;       // (m/s)^2
+constexpr double kMinDoubleArea2 = 1e-40;  // |2A|^2, m^4
+
+class Wind final : public ForceModule {
+ public:
+  Wind(const WindSpec& spec, const ClothTopology& topology)
+      : base_(spec.velocity),
+        amplitude_(spec.gust.amplitude),
+        period_(spec.gust.period),
+        density_(spec.density),
+        drag_(spec.drag),
+        lift_(spec.lift),
+        skin_(spec.skin) {
+    // Index arrays rather than the topology's array-of-triangles: the loop then
+    // reads three streams and the module owns no pointer into the scene.
+    const std::size_t t = topology.triangles.size();
+    a_.reserve(t);
+    b_.reserve(t);
+    c_.reserve(t);
+    for (const auto& tri : topology.triangles) {
+      a_.push_back(tri[0]);
+      b_.push_back(tri[1]);
+      c_.push_back(tri[2]);
+    }
+    begin_step(0.0);  // forces evaluated before any step (relaxation, tests) see w(0)
+  }
+
+  const char* type() const override { return "wind"; }
+  std::size_t state_bytes() const override {
+    return (a_.capacity() + b_.capacity() + c_.capacity()) * sizeof(std::int32_t);
+  }
+
+  // The gust is sampled once per step, so every force evaluation of one step
+  // (RK4 stages, the implicit solve) sees the same wind and add_forces stays a
+  // pure function of the state.
+  void begin_step(double time) override {
+    const double factor = amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(time, period_);
+    wind_[0] = base_.x() * factor;
+    wind_[1] = base_.y() * factor;
+    wind_[2] = base_.z() * factor;
+  }
+
+  // Per triangle with N = (p_b - p_a) x (p_c - p_a) (|N| = 2A, N = 2A n) and the
+  // relative air velocity u = w - mean vertex velocity, uhat = u / |u|, d = N.uhat
+  // (= 2A c, c = n.uhat):
+  //   drag  0.5 rho A |u|^2 (C_D |c| + C_F) uhat = rho |u|^2 / 4 (C_D |d| + C_F |N|) uhat
+  //   lift  0.5 rho A |u|^2 C_L c (n - c uhat)   = rho |u|^2 / 4 C_L d / |N| (N - d uhat)
+  // and each vertex takes a third. Written in N so that only |u| and |N| need a
+  // square root and nothing is normalised twice.
+  void add_forces(const ClothNetwork&, const ClothState& s, NodeVectors& F) const override {
+    const double* x = s.x.data();
+    const double* y = s.y.data();
+    const double* z = s.z.data();
+    const double* vx = s.vx.data();
+    const double* vy = s.vy.data();
+    const double* vz = s.vz.data();
+    double* fx = F.x.data();
+    double* fy = F.y.data();
+    double* fz = F.z.data();
+    const double per_vertex = density_ / 12.0;  // rho / 4, shared by three vertices
+    const std::size_t count = a_.size();
+    for (std::size_t t = 0; t < count; ++t) {
+      const std::int32_t a = a_[t], b = b_[t], c = c_[t];
+      const double ux = wind_[0] - (vx[a] + vx[b] + vx[c]) * (1.0 / 3.0);
+      const double uy = wind_[1] - (vy[a] + vy[b] + vy[c]) * (1.0 / 3.0);
+      const double uz = wind_[2] - (vz[a] + vz[b] + vz[c]) * (1.0 / 3.0);
+      const double u2 = ux * ux + uy * uy + uz * uz;
+      if (u2 <= kMinSpeed2) continue;
+      const double e1x = x[b] - x[a], e1y = y[b] - y[a], e1z = z[b] - z[a];
+      const double e2x = x[c] - x[a], e2y = y[c] - y[a], e2z = z[c] - z[a];
+      const double nx = e1y * e2z - e1z * e2y;
+      const double ny = e1z * e2x - e1x * e2z;
+      const double nz = e1x * e2y - e1y * e2x;
+      const double n2 = nx * nx + ny * ny + nz * nz;
+      if (n2 <= kMinDoubleArea2) continue;
+      const double speed = std::sqrt(u2), inv_speed = 1.0 / speed;
+      const double n_len = std::sqrt(n2);
+      const double hx = ux * inv_speed, hy = uy * inv_speed, hz = uz * inv_speed;
+      const double d = nx * hx + ny * hy + nz * hz;
+      const double k = per_vertex * u2;
+      // Force = k * (along * uhat + across * N): the drag and the lift's -d uhat
+      // share uhat, the lift's N term is the rest.
+      const double across = k * lift_ * d / n_len;
+      const double along = k * (drag_ * std::abs(d) + skin_ * n_len) - across * d;
+      const double gx = along * hx + across * nx;
+      const double gy = along * hy + across * ny;
+      const double gz = along * hz + across * nz;
+      fx[a] += gx;
+      fy[a] += gy;
+      fz[a] += gz;
+      fx[b] += gx;
+      fy[b] += gy;
+      fz[b] += gz;
+      fx[c] += gx;
+      fy[c] += gy;
+      fz[c] += gz;
+    }
+  }
+
+ private:
+  Vec3 base_;
+  double amplitude_, period_;
+  double density_, drag_, lift_, skin_;
+  std::vector<std::int32_t> a_, b_, c_;  // triangle corners
+  double wind_[3] = {0, 0, 0};           // w(t) for the current step, m/s
+};
+
+}  // namespace
+
+std::shared_ptr<ForceModule> make_air_drag(const AirDragSpec& spec) {
+  return std::make_shared<AirDrag>(spec);
+}
+
+std::shared_ptr<ForceModule> make_wind(const WindSpec& spec, const ClothTopology& topology) {
+  return std::make_shared<Wind>(spec, topology);
+}
+
+}  // namespace neurocloth

@@ -1,10 +1,258 @@
-// Placeholder while the module is written (replaced before commit).
-#include <stdexcept>
+// Contact with solid shapes (plane, box, sphere, capsule), with Coulomb
+// friction. A collider is a projection run after each integrator step: a free
+// node that ended the step closer than `thickness` to the surface (or inside)
+// is moved out along the surface normal, loses its approaching normal
+// velocity, and friction acts on its tangential velocity and on the tangential
+// part of the step's displacement.
+//
+// The normal impulse per unit mass, dvn, is the larger of two measures of the
+// same contact: the approaching normal velocity the contact removes and the
+// push-out spread over the step (depth / h). They are not added: with the
+// network's semi-implicit Euler a node resting on the surface gains h g cos(theta)
+// of approach speed in a step and sinks h^2 g cos(theta), both of which are the
+// one impulse h g cos(theta); an integrator that moves with the old velocity
+// (explicit Euler) shows only the first, one that sinks from rest (an already
+// penetrating node) only the second. Taking the larger makes a node at rest on
+// a slope stick exactly while tan(theta) <= mu_s, whatever the integrator.
+//
+// Friction per unit mass is at most mu * dvn. Sticking (|vt| <= mu_s dvn)
+// zeroes the tangential velocity and undoes the step's tangential displacement,
+// so a held node does not creep; sliding takes mu_k dvn off |vt| and shortens the
+// tangential displacement in the same ratio, so position and velocity agree.
+//
+// Node contact only: an edge between two nodes outside a shape may still cut
+// through a corner or a thin part of it. A box catches a node whose step
+// crosses it entirely; a sphere or capsule judges by where the step ends, so a
+// node moving more than about its radius in one step may pass through.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
+#include "../cloth_network.h"
 #include "module_factories.h"
+
 namespace neurocloth {
-std::unique_ptr<ConstraintModule> make_collider(const PlaneSpec&) { throw std::logic_error("todo"); }
-std::unique_ptr<ConstraintModule> make_collider(const BoxSpec&) { throw std::logic_error("todo"); }
-std::unique_ptr<ConstraintModule> make_collider(const SphereSpec&) { throw std::logic_error("todo"); }
-std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec&) { throw std::logic_error("todo"); }
+namespace {
+
+// Where a point stands against a shape: signed distance (negative inside) and
+// the unit direction to push it out along. The plane through the surface point
+// with this normal supports the (convex) shape, so a node moved within the
+// plane parallel to it does not come closer to the shape.
+struct Contact {
+  double phi;
+  Vec3 normal;
+};
+
+// The per-shape `near(start, end, reach)` is a branch-free test on plain
+// doubles, true whenever a node's step from `start` to `end` may have come
+// within `reach` of the solid: the block scan in Collider::apply calls it for
+// every node and vectorises. `contact(end, start)` is exact and runs only for
+// nodes that pass.
+
+class PlaneShape {
+ public:
+  explicit PlaneShape(const PlaneSpec& s)
+      : nx_(s.normal.x()), ny_(s.normal.y()), nz_(s.normal.z()), offset_(s.normal.dot(s.point)) {}
+  bool near(double, double, double, double x, double y, double z, double reach) const {
+    return nx_ * x + ny_ * y + nz_ * z - offset_ < reach;
+  }
+  Contact contact(const Vec3& p, const Vec3&) const {
+    const Vec3 n(nx_, ny_, nz_);
+    return {n.dot(p) - offset_, n};
+  }
+
+ private:
+  double nx_, ny_, nz_, offset_;  // the solid is n.p < offset
+};
+
+class BoxShape {
+ public:
+  explicit BoxShape(const BoxSpec& s) : c_(s.center), e_(s.half_extents) {}
+  // The step's path may meet the box grown by reach: the bounding boxes overlap.
+  bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
+    return overlaps(bx, x, c_.x(), e_.x() + reach) & overlaps(by, y, c_.y(), e_.y() + reach) &
+           overlaps(bz, z, c_.z(), e_.z() + reach);
+  }
+  Contact contact(const Vec3& p, const Vec3& before) const {
+    const Vec3 d = p - c_, b = before - c_;
+    const Vec3 q = d.cwiseAbs() - e_;  // per axis: how far outside that pair of faces
+    if (q.maxCoeff() > 0.0) {
+      // A fast node may cross the whole box in one step (a thin table top):
+      // it goes back to the face it came in through.
+      int axis;
+      if (entered(b, d, axis)) return face(axis, b[axis] > 0.0 ? 1.0 : -1.0, d);
+      const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
+      const double dist = out.norm();
+      return {dist, out / dist};  // away from the nearest point of the box
+    }
+    // Inside. Leave through a face whose outer side held the node at the step's
+    // start (it came in through one of those), the least deep of them; only a
+    // node that started inside too takes the nearest face. Choosing by depth
+    // alone would let a fast node that came in through the top leave by a side.
+    int axis = -1;
+    double side = 1.0, depth = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (!(std::abs(b[k]) > e_[k])) continue;  // started between these two faces
+      const double s = b[k] > 0.0 ? 1.0 : -1.0;
+      if (e_[k] - s * d[k] < depth) {
+        axis = k;
+        side = s;
+        depth = e_[k] - s * d[k];
+      }
+    }
+    if (axis < 0) {
+      q.maxCoeff(&axis);
+      side = d[axis] >= 0.0 ? 1.0 : -1.0;
+    }
+    return face(axis, side, d);
+  }
+
+ private:
+  static bool overlaps(double a, double b, double center, double half) {
+    return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
+  }
+  // The face `side` (+1 or -1) of `axis`, seen from d (relative to the centre).
+  Contact face(int axis, double side, const Vec3& d) const {
+    Vec3 n = Vec3::Zero();
+    n[axis] = side;
+    return {side * d[axis] - e_[axis], n};
+  }
+  // Whether the segment b-d (relative to the centre) starts outside and passes
+  // through the box's inside; `axis` is the one whose face it enters by.
+  bool entered(const Vec3& b, const Vec3& d, int& axis) const {
+    double t_in = 0.0, t_out = 1.0;
+    axis = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double delta = d[k] - b[k];
+      if (delta == 0.0) {
+        if (!(std::abs(b[k]) < e_[k])) return false;
+        continue;
+      }
+      const double t0 = (-e_[k] - b[k]) / delta, t1 = (e_[k] - b[k]) / delta;
+      if (std::min(t0, t1) > t_in) {
+        t_in = std::min(t0, t1);
+        axis = k;
+      }
+      t_out = std::min(t_out, std::max(t0, t1));
+    }
+    return axis >= 0 && t_in < t_out;
+  }
+
+  Vec3 c_, e_;
+};
+
+// Points within `radius` of the segment a-b; a sphere is the segment a == b.
+class CapsuleShape {
+ public:
+  CapsuleShape(const Vec3& a, const Vec3& b, double radius)
+      : a_(a),
+        ab_(b - a),
+        inv_len2_(ab_.squaredNorm() > 0 ? 1.0 / ab_.squaredNorm() : 0.0),
+        r_(radius) {}
+  bool near(double, double, double, double x, double y, double z, double reach) const {
+    const double px = x - a_.x(), py = y - a_.y(), pz = z - a_.z();
+    double t = (px * ab_.x() + py * ab_.y() + pz * ab_.z()) * inv_len2_;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    const double dx = px - t * ab_.x(), dy = py - t * ab_.y(), dz = pz - t * ab_.z();
+    const double r = r_ + reach;
+    return dx * dx + dy * dy + dz * dz < r * r;
+  }
+  Contact contact(const Vec3& p, const Vec3&) const {
+    const Vec3 ap = p - a_;
+    const double t = std::clamp(ap.dot(ab_) * inv_len2_, 0.0, 1.0);
+    const Vec3 d = ap - t * ab_;
+    const double dist = d.norm();
+    // On the axis itself every direction is as near: push up, a fixed choice.
+    if (!(dist > 0.0)) return {-r_, Vec3::UnitY()};
+    return {dist - r_, d / dist};
+  }
+
+ private:
+  Vec3 a_, ab_;
+  double inv_len2_, r_;
+};
+
+template <class Shape>
+class Collider final : public ConstraintModule {
+ public:
+  Collider(const char* type, const Shape& shape, const ContactSpec& spec)
+      : type_(type), shape_(shape), spec_(spec) {}
+  const char* type() const override { return type_; }
+  Phase phase() const override { return ConstraintModule::contact; }
+
+  void apply(const ClothNetwork& net, const StepSpan& span, const ClothState& before,
+             ClothState& after) override {
+    const std::size_t n = after.size();
+    const double reach = spec_.thickness;
+    const double *bx = before.x.data(), *by = before.y.data(), *bz = before.z.data();
+    const double *x = after.x.data(), *y = after.y.data(), *z = after.z.data();
+    // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
+    // near the shape, so a collider the cloth is far from costs one pass.
+    constexpr std::size_t kBlock = 64;
+    for (std::size_t start = 0; start < n; start += kBlock) {
+      const std::size_t end = std::min(n, start + kBlock);
+      int hits = 0;
+      for (std::size_t i = start; i < end; ++i)
+        hits += shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
+      if (hits == 0) continue;
+      for (std::size_t i = start; i < end; ++i) {
+        if (net.masses.free[i] == 0.0 || !shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach))
+          continue;
+        const Vec3 p = after.position(i);
+        const Contact c = shape_.contact(p, before.position(i));
+        if (c.phi < spec_.thickness)
+          resolve(i, c, p, net.masses.friction[i], span.h, before, after);
+      }
+    }
+  }
+
+ private:
+  void resolve(std::size_t i, const Contact& c, const Vec3& p, double node_friction, double h,
+               const ClothState& before, ClothState& after) const {
+    const Vec3& n = c.normal;
+    const Vec3 v = after.velocity(i);
+    const double vn = v.dot(n);
+    const Vec3 vt = v - vn * n;
+    const double depth = spec_.thickness - c.phi;
+    const double dvn = std::max(-vn, depth / h);  // see the top of the file
+    const double mu_k = spec_.friction.value_or(node_friction);
+    // A contact never sticks more weakly than it slides (an explicit static
+    // coefficient below the material's kinetic one is raised to it).
+    const double mu_s = std::max(spec_.static_friction.value_or(mu_k), mu_k);
+    const double speed = vt.norm();
+    // The fraction of tangential velocity, and of the step's tangential
+    // displacement, that friction leaves.
+    const double keep = speed <= mu_s * dvn ? 0.0 : std::max(0.0, 1.0 - mu_k * dvn / speed);
+    const Vec3 step = p - before.position(i);
+    const Vec3 slip = step - step.dot(n) * n;
+    after.set_position(i, p + depth * n - (1.0 - keep) * slip);
+    after.set_velocity(i, std::max(vn, 0.0) * n + keep * vt);
+  }
+
+  const char* type_;
+  Shape shape_;
+  ContactSpec spec_;
+};
+
+template <class Shape>
+std::unique_ptr<ConstraintModule> make(const char* type, const Shape& shape,
+                                       const ContactSpec& spec) {
+  return std::make_unique<Collider<Shape>>(type, shape, spec);
 }
+
+}  // namespace
+
+std::unique_ptr<ConstraintModule> make_collider(const PlaneSpec& spec) {
+  return make("plane", PlaneShape(spec), spec.contact);
+}
+std::unique_ptr<ConstraintModule> make_collider(const BoxSpec& spec) {
+  return make("box", BoxShape(spec), spec.contact);
+}
+std::unique_ptr<ConstraintModule> make_collider(const SphereSpec& spec) {
+  return make("sphere", CapsuleShape(spec.center, spec.center, spec.radius), spec.contact);
+}
+std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec& spec) {
+  return make("capsule", CapsuleShape(spec.a, spec.b, spec.radius), spec.contact);
+}
+
+}  // namespace neurocloth

@@ -1,7 +1,219 @@
-// Placeholder while the module is written (replaced before commit).
+// Self-collision: keeps every node at least `thickness` away from the cloth's
+// triangles it does not belong to, so that layers of one cloth (a fold, a drape
+// piling on the floor) stay apart instead of passing through each other.
+//
+// After each step, per pass: each triangle's bounding box, grown by thickness,
+// goes into a spatial hash; each node asks the hash for the boxes containing
+// it, and for each such triangle over which the node lies (its projection on
+// the triangle's plane falls inside the triangle) and closer to that plane than
+// thickness, the pair is pushed apart along the triangle's normal until the gap
+// is thickness. The side it is pushed to is the side the node was on at the
+// start of the step, so a node that crossed the triangle during the step is
+// brought back rather than pushed on through. The push is shared like an
+// impulse: the node moves in proportion to its inverse mass, each triangle
+// vertex in proportion to its inverse mass times its barycentric weight, which
+// keeps the momentum of the pair and leaves pinned nodes where they are. The
+// pair's approaching normal velocity is removed the same way (an inelastic
+// contact); sliding along the triangle is left alone (no friction).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "../cloth_network.h"
 #include "module_factories.h"
+#include "spatial_hash.h"
+
 namespace neurocloth {
-std::unique_ptr<ConstraintModule> make_self_collision(const SelfCollisionSpec&, const ClothTopology&) { throw std::logic_error("todo"); }
+namespace {
+
+// A node whose projection lies this far outside a triangle (in barycentric
+// units) still counts as over it: a node right above a shared edge is then over
+// both triangles, never over neither because of round-off.
+constexpr double kInsideTolerance = 1e-9;
+// |e1 x e2|^2 below this fraction of (|e1|^2 + |e2|^2)^2: the triangle has no
+// usable normal (collinear or coincident vertices) and is skipped.
+constexpr double kDegenerate = 1e-20;
+
+class SelfCollision final : public ConstraintModule {
+ public:
+  SelfCollision(const SelfCollisionSpec& spec, const ClothTopology& topology)
+      : thickness_(spec.thickness), iterations_(spec.iterations) {
+    if (!(spec.thickness > 0.0) || !std::isfinite(spec.thickness))
+      throw std::invalid_argument("self_collision: thickness must be > 0");
+    if (spec.iterations < 1) throw std::invalid_argument("self_collision: iterations must be >= 1");
+    const auto nodes = static_cast<std::int64_t>(topology.rest_positions.size());
+    triangles_.reserve(topology.triangles.size());
+    double edge_sum = 0;
+    for (const auto& t : topology.triangles) {
+      for (std::int32_t k : t)
+        if (k < 0 || k >= nodes)
+          throw std::invalid_argument("self_collision: triangle node " + std::to_string(k) +
+                                      " is not a node of the cloth");
+      triangles_.push_back(t);
+      for (int e = 0; e < 3; ++e)
+        edge_sum +=
+            (topology.rest_positions[t[(e + 1) % 3]] - topology.rest_positions[t[e]]).norm();
+    }
+    node_count_ = topology.rest_positions.size();
+    // A cell about one edge long: a triangle's grown box then spans 1 to 3 cells
+    // per axis, and a cell holds a few triangles. Never below 2 * thickness, so
+    // the growth by thickness does not make every box cover many cells.
+    const double mean_edge = triangles_.empty() ? 0.0 : edge_sum / (3.0 * triangles_.size());
+    double cell = std::max(std::isfinite(mean_edge) ? mean_edge : 0.0, 2.0 * thickness_);
+    hash_.reset(cell, triangles_.size());
+  }
+
+  const char* type() const override { return "self_collision"; }
+  Phase phase() const override { return self_contact; }
+  std::size_t state_bytes() const override {
+    return triangles_.capacity() * sizeof(triangles_[0]) + hash_.bytes();
+  }
+
+  void apply(const ClothNetwork& net, const StepSpan&, const ClothState& before,
+             ClothState& after) override {
+    if (triangles_.empty()) return;
+    if (after.size() != node_count_ || before.size() != node_count_ ||
+        net.node_count() != node_count_)
+      throw std::invalid_argument("self_collision: state size differs from the cloth's");
+    for (int pass = 0; pass < iterations_; ++pass) {
+      file_triangles(after);
+      long pushed = 0;
+      for (std::size_t i = 0; i < node_count_; ++i) {
+        const double p[3] = {after.x[i], after.y[i], after.z[i]};
+        hash_.for_each_containing(p, [&](std::int32_t t) {
+          if (separate(net, before, after, static_cast<std::int32_t>(i),
+                       triangles_[static_cast<std::size_t>(t)]))
+            ++pushed;
+        });
+      }
+      // A pass that moved nothing leaves the next one nothing to do either.
+      if (pushed == 0) break;
+    }
+  }
+
+ private:
+  // Rebuilds the hash from the triangles' current boxes grown by thickness: a
+  // node within thickness of a triangle lies inside its grown box.
+  void file_triangles(const ClothState& s) {
+    std::vector<Aabb>& boxes = hash_.boxes();
+    for (std::size_t t = 0; t < triangles_.size(); ++t) {
+      const auto& tri = triangles_[t];
+      Aabb& b = boxes[t];
+      const NodeArray* axis[3] = {&s.x, &s.y, &s.z};
+      for (int a = 0; a < 3; ++a) {
+        const NodeArray& c = *axis[a];
+        const double u = c[tri[0]], v = c[tri[1]], w = c[tri[2]];
+        b.lo[a] = std::min({u, v, w}) - thickness_;
+        b.hi[a] = std::max({u, v, w}) + thickness_;
+      }
+    }
+    hash_.build();
+  }
+
+  // Pushes node i and triangle tri apart if i lies over tri closer than
+  // thickness to its plane. Returns whether anything moved.
+  bool separate(const ClothNetwork& net, const ClothState& before, ClothState& after,
+                std::int32_t i, const std::array<std::int32_t, 3>& tri) const {
+    if (tri[0] == i || tri[1] == i || tri[2] == i) return false;  // its own triangle
+    const double* im = net.masses.inverse_mass.data();
+    const double* fr = net.masses.free.data();
+    const auto n0 = static_cast<std::size_t>(tri[0]), n1 = static_cast<std::size_t>(tri[1]),
+               n2 = static_cast<std::size_t>(tri[2]), ni = static_cast<std::size_t>(i);
+    const double wp = fr[ni] * im[ni], w0 = fr[n0] * im[n0], w1 = fr[n1] * im[n1],
+                 w2 = fr[n2] * im[n2];
+    if (wp + w0 + w1 + w2 == 0.0) return false;  // all pinned: nothing may move
+
+    const Vec3 a = after.position(n0);
+    const Vec3 e1 = after.position(n1) - a, e2 = after.position(n2) - a;
+    Vec3 n = e1.cross(e2);
+    const double nn = n.squaredNorm(), d00 = e1.squaredNorm(), d11 = e2.squaredNorm();
+    const double scale = d00 + d11;
+    if (!(nn > kDegenerate * scale * scale)) return false;  // also false for NaN
+    n /= std::sqrt(nn);
+    const Vec3 d = after.position(ni) - a;
+    const double s = d.dot(n);  // signed distance to the plane
+    if (!(std::abs(s) < thickness_)) return false;
+
+    // Barycentric coordinates of the projection (d minus its normal part has the
+    // same dot products with e1 and e2 as d); d00 d11 - d01^2 = |e1 x e2|^2.
+    const double d01 = e1.dot(e2), d20 = d.dot(e1), d21 = d.dot(e2);
+    double bv = (d11 * d20 - d01 * d21) / nn;
+    double bw = (d00 * d21 - d01 * d20) / nn;
+    double bu = 1.0 - bv - bw;
+    if (bu < -kInsideTolerance || bv < -kInsideTolerance || bw < -kInsideTolerance) return false;
+    bu = std::max(bu, 0.0);
+    bv = std::max(bv, 0.0);
+    bw = std::max(bw, 0.0);
+    const double sum = bu + bv + bw;
+    bu /= sum;
+    bv /= sum;
+    bw /= sum;
+
+    // The side: where the node was at the start of the step. A node that starts
+    // exactly on the plane (or a triangle that starts degenerate) keeps the side
+    // it is on now; exactly on it now too, the normal's side.
+    const Vec3 a0 = before.position(n0);
+    const double s0 =
+        (before.position(ni) - a0).dot((before.position(n1) - a0).cross(before.position(n2) - a0));
+    const double side = s0 > 0.0 ? 1.0 : s0 < 0.0 ? -1.0 : s >= 0.0 ? 1.0 : -1.0;
+
+    // Moving the node by wp*k and vertex j by -b_j*w_j*k along the normal opens
+    // the gap by k * W: k = missing gap / W. Momentum: wp*m_p - sum b_j w_j m_j = 0.
+    // W has a floor: when only a vertex of small weight b_j may move (the node
+    // and the rest pinned), opening the whole gap would move it by gap / b_j, a
+    // kick without bound; with the floor no vertex moves more than 4 gaps at once
+    // and later passes and steps finish the job. An unpinned triangle of equal
+    // masses never reaches the floor (sum b^2 >= 1/3 > 1/4).
+    const double W = std::max(wp + bu * bu * w0 + bv * bv * w1 + bw * bw * w2,
+                              0.25 * (bu * w0 + bv * w1 + bw * w2));
+    if (!(W > 0.0)) return false;  // the free vertices have no weight at this point
+    const Vec3 dir = side * n;
+    const double k = (thickness_ - side * s) / W;
+    add_position(after, ni, (wp * k) * dir);
+    add_position(after, n0, (-bu * w0 * k) * dir);
+    add_position(after, n1, (-bv * w1 * k) * dir);
+    add_position(after, n2, (-bw * w2 * k) * dir);
+
+    // Inelastic: the relative velocity along dir, if closing, goes to zero.
+    const Vec3 vt = bu * after.velocity(n0) + bv * after.velocity(n1) + bw * after.velocity(n2);
+    const double closing = dir.dot(after.velocity(ni) - vt);
+    if (closing < 0.0) {
+      const double j = -closing / W;
+      add_velocity(after, ni, (wp * j) * dir);
+      add_velocity(after, n0, (-bu * w0 * j) * dir);
+      add_velocity(after, n1, (-bv * w1 * j) * dir);
+      add_velocity(after, n2, (-bw * w2 * j) * dir);
+    }
+    return true;
+  }
+
+  static void add_position(ClothState& s, std::size_t i, const Vec3& dx) {
+    s.x[i] += dx.x();
+    s.y[i] += dx.y();
+    s.z[i] += dx.z();
+  }
+  static void add_velocity(ClothState& s, std::size_t i, const Vec3& dv) {
+    s.vx[i] += dv.x();
+    s.vy[i] += dv.y();
+    s.vz[i] += dv.z();
+  }
+
+  double thickness_;
+  int iterations_;
+  std::size_t node_count_ = 0;
+  std::vector<std::array<std::int32_t, 3>> triangles_;
+  SpatialHash hash_;
+};
+
+}  // namespace
+
+std::unique_ptr<ConstraintModule> make_self_collision(const SelfCollisionSpec& spec,
+                                                      const ClothTopology& topology) {
+  return std::make_unique<SelfCollision>(spec, topology);
 }
+
+}  // namespace neurocloth

@@ -2,11 +2,22 @@
 // after a step, a spring stretched beyond max_stretch times its rest length is
 // shortened to that length by moving its ends towards each other, and the
 // nodes' velocities take the correction over the step (v += dx / h), so the
-// next step does not undo it. Provot made one pass; one pass fixes a spring but
-// may stretch its neighbours, so this sweeps (Gauss-Seidel) until no spring is
-// over the limit or the sweep budget is spent.
+// next step does not undo it.
+//
+// Provot made one pass. One pass fixes a spring but may stretch its
+// neighbours, and in a hanging cloth (the case he wrote it for) the stretch is a
+// chain from the pins down: splitting each correction evenly moves it one
+// spring per sweep, so a 30-row curtain needed the whole sweep budget every
+// step. Instead, like Provot at a pin, a spring moves only its end farther (in
+// springs) from the nearest pin, and the sweep runs from the pins outwards: a
+// loaded chain is then fixed in one sweep. Ends equally far from the pins
+// (or a cloth with no pins) share the correction by inverse mass, which keeps
+// the pair's momentum. Sweeps alternate direction and stop when no spring is
+// over its limit.
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <numeric>
 
 #include "../cloth_network.h"
 #include "module_factories.h"
@@ -18,19 +29,38 @@ class StrainLimit final : public ConstraintModule {
  public:
   StrainLimit(const StrainLimitSpec& spec, const ClothTopology& topology) : spec_(spec) {
     const bool want[kSpringFamilyCount] = {spec.structural, spec.shear, spec.bend};
+    const std::size_t n = topology.rest_positions.size();
+    std::vector<int> degree(n + 1, 0);
     for (const SpringSpec& s : topology.springs) {
       if (!want[static_cast<int>(s.family)]) continue;
       a_.push_back(s.a);
       b_.push_back(s.b);
       limit_.push_back(spec.max_stretch *
                        (topology.rest_positions[s.b] - topology.rest_positions[s.a]).norm());
+      ++degree[s.a + 1];
+      ++degree[s.b + 1];
     }
-    start_.resize(topology.rest_positions.size());
+    // Neighbours by spring (compressed rows), for the distance to the pins.
+    std::partial_sum(degree.begin(), degree.end(), degree.begin());
+    first_ = degree;
+    neighbour_.resize(2 * a_.size());
+    for (std::size_t k = 0; k < a_.size(); ++k) {
+      neighbour_[degree[a_[k]]++] = b_[k];
+      neighbour_[degree[b_[k]]++] = a_[k];
+    }
+    order_.resize(a_.size());
+    move_a_.resize(a_.size());
+    move_b_.resize(a_.size());
+    depth_.resize(n);
+    start_.resize(n);
   }
   const char* type() const override { return "strain_limit"; }
   Phase phase() const override { return limit; }
   std::size_t state_bytes() const override {
-    return (a_.size() + b_.size()) * sizeof(std::int32_t) + limit_.size() * sizeof(double) +
+    return (a_.size() + b_.size() + order_.size() + neighbour_.size() + first_.size() +
+            depth_.size()) *
+               sizeof(std::int32_t) +
+           (limit_.size() + move_a_.size() + move_b_.size() + free_mask_.size()) * sizeof(double) +
            3 * start_.size() * sizeof(double);
   }
   // Steps whose sweeps ran out before every spring was within its limit.
@@ -38,29 +68,30 @@ class StrainLimit final : public ConstraintModule {
 
   void apply(const ClothNetwork& net, const StepSpan& span, const ClothState&,
              ClothState& after) override {
+    if (net.masses.free != free_mask_) plan(net);  // pins changed (or first step)
     std::copy(after.x.begin(), after.x.end(), start_.x.begin());
     std::copy(after.y.begin(), after.y.end(), start_.y.begin());
     std::copy(after.z.begin(), after.z.end(), start_.z.begin());
-    // A node moves in proportion to its inverse mass (a pinned one not at all),
-    // so a correction leaves the pair's momentum unchanged.
     const double* w = net.masses.inverse_mass.data();
-    const double* free = net.masses.free.data();
-    const double slack = 1.0 + spec_.tolerance;
+    const double slack2 = (1.0 + spec_.tolerance) * (1.0 + spec_.tolerance);
+    const std::size_t count = order_.size();
     bool within = false;
     for (int sweep = 0; sweep < spec_.iterations && !within; ++sweep) {
       within = true;
-      for (std::size_t k = 0; k < a_.size(); ++k) {
+      const bool forward = sweep % 2 == 0;
+      for (std::size_t j = 0; j < count; ++j) {
+        const auto k = static_cast<std::size_t>(order_[forward ? j : count - 1 - j]);
         const auto a = static_cast<std::size_t>(a_[k]), b = static_cast<std::size_t>(b_[k]);
         const double dx = after.x[b] - after.x[a], dy = after.y[b] - after.y[a],
                      dz = after.z[b] - after.z[a];
         const double len2 = dx * dx + dy * dy + dz * dz;
         const double lim = limit_[k];
-        if (len2 <= lim * lim * slack * slack) continue;
-        const double wa = free[a] * w[a], wb = free[b] * w[b];
+        if (len2 <= lim * lim * slack2) continue;
+        const double wa = move_a_[k] * w[a], wb = move_b_[k] * w[b];
         if (wa + wb == 0.0) continue;  // both ends pinned: nothing may move
         within = false;
         const double len = std::sqrt(len2);
-        // Shorten to exactly the limit: a moves by + wa/(wa+wb) of the excess along d.
+        // Shorten to exactly the limit; a takes wa / (wa + wb) of the excess.
         const double excess = (len - lim) / (len * (wa + wb));
         after.x[a] += wa * excess * dx;
         after.y[a] += wa * excess * dy;
@@ -80,10 +111,48 @@ class StrainLimit final : public ConstraintModule {
   }
 
  private:
+  // Distance in springs from every node to the nearest pin (breadth first),
+  // then which end of each spring moves and the order of the sweep.
+  void plan(const ClothNetwork& net) {
+    free_mask_ = net.masses.free;
+    const std::size_t n = depth_.size();
+    std::fill(depth_.begin(), depth_.end(), INT_MAX);
+    std::vector<std::int32_t> queue;
+    for (std::size_t i = 0; i < n; ++i)
+      if (free_mask_[i] == 0.0) {
+        depth_[i] = 0;
+        queue.push_back(static_cast<std::int32_t>(i));
+      }
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int i = queue[q];
+      for (int e = first_[i]; e < first_[i + 1]; ++e) {
+        const int j = neighbour_[e];
+        if (depth_[j] == INT_MAX) {
+          depth_[j] = depth_[i] + 1;
+          queue.push_back(j);
+        }
+      }
+    }
+    for (std::size_t k = 0; k < a_.size(); ++k) {
+      const int da = depth_[a_[k]], db = depth_[b_[k]];
+      move_a_[k] = free_mask_[a_[k]] * (da >= db ? 1.0 : 0.0);
+      move_b_[k] = free_mask_[b_[k]] * (db >= da ? 1.0 : 0.0);
+    }
+    std::iota(order_.begin(), order_.end(), 0);
+    std::stable_sort(order_.begin(), order_.end(), [&](std::int32_t p, std::int32_t q) {
+      return std::min(depth_[a_[p]], depth_[b_[p]]) < std::min(depth_[a_[q]], depth_[b_[q]]);
+    });
+  }
+
   StrainLimitSpec spec_;
   std::vector<std::int32_t> a_, b_;
   std::vector<double> limit_;  // max_stretch * rest length, m
-  NodeVectors start_;          // positions before the limits, for the velocity update
+  std::vector<std::int32_t> first_, neighbour_;
+  // Planned from the pins: per spring, whether each end may move, and the sweep order.
+  std::vector<double> free_mask_;  // the free mask the plan was made for (1 free, 0 pinned)
+  std::vector<std::int32_t> depth_, order_;
+  std::vector<double> move_a_, move_b_;
+  NodeVectors start_;  // positions before the limits, for the velocity update
   long unconverged_ = 0;
 };
 
