@@ -282,7 +282,8 @@ TEST_F(Cli, SimulateWithABadModuleNamesFileAndField) {
   const std::string path =
       write("bad.json", with(read_text(scene_asset("table_drape")), R"("type": "box")",
                              R"("type": "box", "friction": -1)"));
-  expect_input_error({"simulate", path, "--out", result_path()}, {path, "modules[0].friction"});
+  expect_input_error({"simulate", path, "--seconds", "1", "--out", result_path()},
+                     {path, "modules[0].friction"});
 }
 
 TEST_F(Cli, UnwritableOutputNamesThePath) {

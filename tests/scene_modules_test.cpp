@@ -2,6 +2,8 @@
 // scene without modules carries (nothing), and the errors bad declarations get.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "scene.h"
@@ -106,6 +108,56 @@ TEST(SceneModules, ResizingKeepsModulesAndMovesTheNewPins) {
   sim.advance(1.0);
   EXPECT_GT(sim.state().position(0).x(), curtain.topology.rest_positions[0].x());
   EXPECT_TRUE(resized_grid(test::asset_scene("table_drape"), 8).pins.empty());
+}
+
+// Signed distance from p to an axis-aligned box (negative inside), written
+// independently of the collider code.
+double box_distance(const Vec3& p, const BoxSpec& b) {
+  const Vec3 q = (p - b.center).cwiseAbs() - b.half_extents;
+  return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+}
+
+// The paper's case at its own parameters (dt 0.04 as the refresh interval):
+// after 3 s nothing is inside the table, the middle lies on the top, the edges
+// hang below it, and the cloth has settled.
+TEST(SceneModules, TheTableDrapeRestsOnTheTableAndHangsOverItsEdges) {
+  const Scene scene = test::asset_scene("table_drape");
+  const auto& box = std::get<BoxSpec>(scene.modules.at(0).spec);
+  const double top = box.center.y() + box.half_extents.y();
+  Simulation sim = scene.make_simulation();
+  ASSERT_EQ(sim.advance(3.0), RunStatus::ok);
+  const ClothState& s = sim.state();
+  double deepest = 1e9, lowest = 1e9;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    deepest = std::min(deepest, box_distance(s.position(i), box));
+    lowest = std::min(lowest, s.position(i).y());
+  }
+  EXPECT_GE(deepest, box.contact.thickness - 1e-9);  // no node inside (or within the skin)
+  const int n = scene.grid->rows;
+  const Vec3 centre = s.position((n / 2) * n + n / 2);
+  EXPECT_NEAR(centre.y(), top + box.contact.thickness, 0.01);
+  EXPECT_LT(std::abs(centre.x()), 0.1);  // it did not slide off
+  EXPECT_LT(std::abs(centre.z()), 0.1);
+  for (int corner : {0, n - 1, (n - 1) * n, n * n - 1})
+    EXPECT_LT(s.position(corner).y(), top - 0.1) << corner;  // hanging over the edge
+  EXPECT_LT(lowest, top - 0.1);
+  EXPECT_LT(sim.energy().kinetic, 1e-3);  // at rest (damping 0.8)
+}
+
+TEST(SceneModules, TheSphereDropEndsWithNoNodeInsideTheSphereOrFloor) {
+  const Scene scene = test::asset_scene("sphere_drop");
+  const auto& sphere = std::get<SphereSpec>(scene.modules.at(0).spec);
+  Simulation sim = scene.make_simulation();
+  ASSERT_EQ(sim.advance(3.0), RunStatus::ok);
+  double closest = 1e9, lowest = 1e9;
+  for (std::size_t i = 0; i < sim.state().size(); ++i) {
+    const Vec3 p = sim.state().position(i);
+    closest = std::min(closest, (p - sphere.center).norm() - sphere.radius);
+    lowest = std::min(lowest, p.y());
+  }
+  EXPECT_GE(closest, sphere.contact.thickness - 1e-9);
+  EXPECT_GE(lowest, 0.005 - 1e-9);  // the floor's thickness
+  EXPECT_LT(lowest, 0.05);          // and it did reach the floor around the sphere
 }
 
 TEST(SceneModulesInput, UnknownType) {

@@ -19,7 +19,10 @@ DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& 
   }
   size_ = s.size() ? std::max((hi - lo).norm(), 1e-3) : 1.0;
   const Energy e = net.energy(s);
-  base_budget_ = std::max({e.kinetic + std::abs(e.spring), weight * size_, 1e-12});
+  double modules = 0;  // what wind and the like can put in
+  for (const auto& m : net.force_modules)
+    modules += m->energy_bound(net, size_);
+  base_budget_ = std::max({e.kinetic + std::abs(e.spring) + modules, weight * size_, 1e-12});
   gravity_start_ = e.gravity;
 }
 

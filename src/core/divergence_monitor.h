@@ -2,7 +2,8 @@
 // Decides whether a state is still physical: finite, and with kinetic plus
 // spring energy within a budget. The budget is the energy the scene can
 // legitimately hold — what it started with, what gravity has released since,
-// and what the external forces could put in over the cloth's size — so a long
+// what the external forces and force modules (wind) could put in over the
+// cloth's size — so a long
 // free fall or a user's drag is not "runaway", while an exploding integrator is.
 // One strike above runaway_factor * budget is tolerated (an implicit step on a
 // very stiff cloth can lift the energy a few hundred times for a step or two).

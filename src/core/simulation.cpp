@@ -103,8 +103,13 @@ RunStatus Simulation::advance(double seconds) {
 }
 
 void Simulation::begin_step() {
+  bool changed = false;
   for (const auto& m : net_.force_modules)
-    m->begin_step(time_);
+    changed |= m->begin_step(time_);
+  if (changed) {  // a gust moved: the forces cached at the current state are stale
+    front_forces_valid_ = false;
+    former_force_ = -1;
+  }
 }
 
 void Simulation::constrain(ClothState& after, double h) {

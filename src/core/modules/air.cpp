@@ -79,6 +79,8 @@ class Wind final : public ForceModule {
       a_.push_back(tri[0]);
       b_.push_back(tri[1]);
       c_.push_back(tri[2]);
+      const auto& p = topology.rest_positions;
+      area_ += 0.5 * (p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]).norm();
     }
     begin_step(0.0);  // forces evaluated before any step (relaxation, tests) see w(0)
   }
@@ -91,11 +93,25 @@ class Wind final : public ForceModule {
   // The gust is sampled once per step, so every force evaluation of one step
   // (RK4 stages, the implicit solve) sees the same wind and add_forces stays a
   // pure function of the state.
-  void begin_step(double time) override {
+  bool begin_step(double time) override {
     const double factor = amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(time, period_);
+    const bool changed = factor != factor_;
+    factor_ = factor;
     wind_[0] = base_.x() * factor;
     wind_[1] = base_.y() * factor;
     wind_[2] = base_.z() * factor;
+    return changed;
+  }
+
+  // The cloth carried at the strongest gust, plus the strongest force the wind
+  // can exert on the whole cloth pushing it across its own size.
+  double energy_bound(const ClothNetwork& net, double size) const override {
+    const double w = base_.norm() * (1.0 + amplitude_);
+    double mass = 0;
+    for (std::size_t i = 0; i < net.node_count(); ++i)
+      mass += net.masses.free[i] * net.mass(i);
+    const double force = 0.5 * density_ * area_ * w * w * (drag_ + skin_ + 0.5 * lift_);
+    return 0.5 * mass * w * w + force * size;
   }
 
   // Per triangle with N = (p_b - p_a) x (p_c - p_a) (|N| = 2A, N = 2A n) and the
@@ -159,6 +175,8 @@ class Wind final : public ForceModule {
   Vec3 base_;
   double amplitude_, period_;
   double density_, drag_, lift_, skin_;
+  double area_ = 0;                      // the cloth's rest area, m^2 (for the energy bound)
+  double factor_ = 0;                    // the gust factor frozen for the current step
   std::vector<std::int32_t> a_, b_, c_;  // triangle corners
   double wind_[3] = {0, 0, 0};           // w(t) for the current step, m/s
 };

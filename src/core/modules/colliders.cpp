@@ -172,6 +172,13 @@ class CapsuleShape {
   double inv_len2_, r_;
 };
 
+// A node this close outside the thickness and moving in touches the surface
+// already. Explicit Euler moves a node with the velocity it had: one resting
+// exactly at the thickness gains approach speed in a step without sinking, and
+// without this band would keep it until it had sunk a step later. Round-off
+// leaves a node pushed out at the thickness within far less of it.
+constexpr double kTouch = 1e-9;  // m
+
 template <class Shape>
 class Collider final : public ConstraintModule {
  public:
@@ -183,7 +190,7 @@ class Collider final : public ConstraintModule {
   void apply(const ClothNetwork& net, const StepSpan& span, const ClothState& before,
              ClothState& after) override {
     const std::size_t n = after.size();
-    const double reach = spec_.thickness;
+    const double reach = spec_.thickness + kTouch;
     const double *bx = before.x.data(), *by = before.y.data(), *bz = before.z.data();
     const double *x = after.x.data(), *y = after.y.data(), *z = after.z.data();
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
@@ -200,8 +207,7 @@ class Collider final : public ConstraintModule {
           continue;
         const Vec3 p = after.position(i);
         const Contact c = shape_.contact(p, before.position(i));
-        if (c.phi < spec_.thickness)
-          resolve(i, c, p, net.masses.friction[i], span.h, before, after);
+        if (c.phi < reach) resolve(i, c, p, net.masses.friction[i], span.h, before, after);
       }
     }
   }
@@ -214,7 +220,8 @@ class Collider final : public ConstraintModule {
     const double vn = v.dot(n);
     const Vec3 vt = v - vn * n;
     const double depth = spec_.thickness - c.phi;
-    const double dvn = std::max(-vn, depth / h);  // see the top of the file
+    if (depth <= 0.0 && vn >= 0.0) return;        // touching but not pressing
+    const double dvn = std::max(-vn, depth / h);  // > 0; see the top of the file
     const double mu_k = spec_.friction.value_or(node_friction);
     // A contact never sticks more weakly than it slides (an explicit static
     // coefficient below the material's kinetic one is raised to it).
@@ -225,7 +232,7 @@ class Collider final : public ConstraintModule {
     const double keep = speed <= mu_s * dvn ? 0.0 : std::max(0.0, 1.0 - mu_k * dvn / speed);
     const Vec3 step = p - before.position(i);
     const Vec3 slip = step - step.dot(n) * n;
-    after.set_position(i, p + depth * n - (1.0 - keep) * slip);
+    after.set_position(i, p + std::max(depth, 0.0) * n - (1.0 - keep) * slip);
     after.set_velocity(i, std::max(vn, 0.0) * n + keep * vt);
   }
 

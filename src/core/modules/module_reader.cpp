@@ -249,8 +249,7 @@ int read_node_ref(const JsonFields& in, const json& v, const std::string& f,
 }
 
 std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& modules,
-                                            const ClothTopology& topology,
-                                            std::vector<int>& pins) {
+                                            const ClothTopology& topology, std::vector<int>& pins) {
   if (!modules.is_array()) in.fail("modules", "expected an array of module objects");
   std::vector<ModuleDeclaration> out;
   for (std::size_t i = 0; i < modules.size(); ++i) {
@@ -279,8 +278,8 @@ std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& mo
     else if (type == "pin_motion")
       spec = read_pin_motion(m, topology, pins);
     else
-      in.fail(field + ".type", "unknown module type '" + type + "' (expected one of: " +
-                                   module_type_names() + ")");
+      in.fail(field + ".type",
+              "unknown module type '" + type + "' (expected one of: " + module_type_names() + ")");
     out.push_back({type, obj.dump(), std::move(spec)});
   }
   return out;

@@ -73,8 +73,8 @@ struct WindSpec {
 struct StrainLimitSpec {
   double max_stretch = 1.1;  // > 1
   bool structural = true, shear = true, bend = false;
-  int iterations = 100;      // sweeps at most per step
-  double tolerance = 1e-9;   // relative overshoot accepted
+  int iterations = 100;     // sweeps at most per step
+  double tolerance = 1e-9;  // relative overshoot accepted
 };
 
 // Node-triangle self-collision with a spatial hash.
@@ -93,8 +93,8 @@ struct PinMotionSpec {
   double frequency = 0;  // Hz; used when there are no keyframes
 };
 
-using ModuleSpec = std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, AirDragSpec,
-                                WindSpec, StrainLimitSpec, SelfCollisionSpec, PinMotionSpec>;
+using ModuleSpec = std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, AirDragSpec, WindSpec,
+                                StrainLimitSpec, SelfCollisionSpec, PinMotionSpec>;
 
 struct ModuleDeclaration {
   std::string type;         // as written in the scene ("box", ...)

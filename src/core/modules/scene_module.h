@@ -29,7 +29,8 @@ struct ModuleClock {
 // Times one call into `clock` (two steady_clock reads: tens of ns per call).
 class ScopedModuleTimer {
  public:
-  explicit ScopedModuleTimer(ModuleClock& c) : clock_(c), start_(std::chrono::steady_clock::now()) {}
+  explicit ScopedModuleTimer(ModuleClock& c)
+      : clock_(c), start_(std::chrono::steady_clock::now()) {}
   ~ScopedModuleTimer() {
     clock_.seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -58,8 +59,14 @@ class SceneModule {
 
 class ForceModule : public SceneModule {
  public:
-  // Once per step, before it: time-dependent inputs (a gust) are frozen for the step.
-  virtual void begin_step(double /*time*/) {}
+  // Once per step, before it: time-dependent inputs (a gust) are frozen for the
+  // step. Returns true when the forces at a given state changed (cached forces
+  // are then recomputed).
+  virtual bool begin_step(double /*time*/) { return false; }
+  // The most kinetic plus spring energy the module can legitimately put into
+  // the cloth (J), for the divergence check's budget; `size` is the cloth's
+  // extent in m. Dissipative modules put in none.
+  virtual double energy_bound(const ClothNetwork& /*net*/, double /*size*/) const { return 0; }
   // Adds the module's force on every node to `force` (N). Must not allocate.
   virtual void add_forces(const ClothNetwork& net, const ClothState& state,
                           NodeVectors& force) const = 0;

@@ -59,18 +59,21 @@ class SelfCollision final : public ConstraintModule {
             (topology.rest_positions[t[(e + 1) % 3]] - topology.rest_positions[t[e]]).norm();
     }
     node_count_ = topology.rest_positions.size();
-    // A cell about one edge long: a triangle's grown box then spans 1 to 3 cells
-    // per axis, and a cell holds a few triangles. Never below 2 * thickness, so
-    // the growth by thickness does not make every box cover many cells.
+    // Cells about as wide as a triangle's box (an edge plus thickness on either
+    // side): most boxes are then filed once, and a cell holds a few triangles.
     const double mean_edge = triangles_.empty() ? 0.0 : edge_sum / (3.0 * triangles_.size());
-    double cell = std::max(std::isfinite(mean_edge) ? mean_edge : 0.0, 2.0 * thickness_);
+    const double cell = (std::isfinite(mean_edge) ? mean_edge : 0.0) + 2.0 * thickness_;
     hash_.reset(cell, triangles_.size());
+    // A node over a flat sheet has one or two candidates besides its own
+    // triangles; folds have more. Grows (once) if a scene needs more.
+    pairs_.reserve(4 * node_count_);
   }
 
   const char* type() const override { return "self_collision"; }
   Phase phase() const override { return self_contact; }
   std::size_t state_bytes() const override {
-    return triangles_.capacity() * sizeof(triangles_[0]) + hash_.bytes();
+    return triangles_.capacity() * sizeof(triangles_[0]) + hash_.bytes() +
+           pairs_.capacity() * sizeof(Pair);
   }
 
   void apply(const ClothNetwork& net, const StepSpan&, const ClothState& before,
@@ -79,17 +82,34 @@ class SelfCollision final : public ConstraintModule {
     if (after.size() != node_count_ || before.size() != node_count_ ||
         net.node_count() != node_count_)
       throw std::invalid_argument("self_collision: state size differs from the cloth's");
+    // Detection, once per step: the pairs whose node lies in the triangle's
+    // grown box, less a node's own triangles and pairs where nothing may move.
+    file_triangles(after);
+    pairs_.clear();
+    const double* im = net.masses.inverse_mass.data();
+    const double* fr = net.masses.free.data();
+    auto weight = [&](std::int32_t k) {
+      const auto u = static_cast<std::size_t>(k);
+      return fr[u] * im[u];
+    };
+    for (std::size_t i = 0; i < node_count_; ++i) {
+      const double p[3] = {after.x[i], after.y[i], after.z[i]};
+      const auto node = static_cast<std::int32_t>(i);
+      hash_.for_each_containing(p, [&](std::int32_t t) {
+        const auto& tri = triangles_[static_cast<std::size_t>(t)];
+        if (tri[0] == node || tri[1] == node || tri[2] == node) return;
+        if (weight(node) + weight(tri[0]) + weight(tri[1]) + weight(tri[2]) == 0.0)
+          return;  // all pinned
+        pairs_.push_back({node, t});
+      });
+    }
+    // Relaxation: each pass separates every pair still too close, in a fixed
+    // order (Gauss-Seidel: a pair sees the corrections of the pairs before it).
     for (int pass = 0; pass < iterations_; ++pass) {
-      file_triangles(after);
       long pushed = 0;
-      for (std::size_t i = 0; i < node_count_; ++i) {
-        const double p[3] = {after.x[i], after.y[i], after.z[i]};
-        hash_.for_each_containing(p, [&](std::int32_t t) {
-          if (separate(net, before, after, static_cast<std::int32_t>(i),
-                       triangles_[static_cast<std::size_t>(t)]))
-            ++pushed;
-        });
-      }
+      for (const Pair& c : pairs_)
+        if (separate(net, before, after, c.node, triangles_[static_cast<std::size_t>(c.triangle)]))
+          ++pushed;
       // A pass that moved nothing leaves the next one nothing to do either.
       if (pushed == 0) break;
     }
@@ -118,7 +138,6 @@ class SelfCollision final : public ConstraintModule {
   // thickness to its plane. Returns whether anything moved.
   bool separate(const ClothNetwork& net, const ClothState& before, ClothState& after,
                 std::int32_t i, const std::array<std::int32_t, 3>& tri) const {
-    if (tri[0] == i || tri[1] == i || tri[2] == i) return false;  // its own triangle
     const double* im = net.masses.inverse_mass.data();
     const double* fr = net.masses.free.data();
     const auto n0 = static_cast<std::size_t>(tri[0]), n1 = static_cast<std::size_t>(tri[1]),
@@ -133,10 +152,11 @@ class SelfCollision final : public ConstraintModule {
     const double nn = n.squaredNorm(), d00 = e1.squaredNorm(), d11 = e2.squaredNorm();
     const double scale = d00 + d11;
     if (!(nn > kDegenerate * scale * scale)) return false;  // also false for NaN
-    n /= std::sqrt(nn);
     const Vec3 d = after.position(ni) - a;
-    const double s = d.dot(n);  // signed distance to the plane
-    if (!(std::abs(s) < thickness_)) return false;
+    // |s| < thickness for the signed distance s = d.n / |n|, without the root:
+    // most candidates fail here or at the barycentric test below.
+    const double dn = d.dot(n);
+    if (!(dn * dn < thickness_ * thickness_ * nn)) return false;
 
     // Barycentric coordinates of the projection (d minus its normal part has the
     // same dot products with e1 and e2 as d); d00 d11 - d01^2 = |e1 x e2|^2.
@@ -145,6 +165,9 @@ class SelfCollision final : public ConstraintModule {
     double bw = (d00 * d21 - d01 * d20) / nn;
     double bu = 1.0 - bv - bw;
     if (bu < -kInsideTolerance || bv < -kInsideTolerance || bw < -kInsideTolerance) return false;
+    const double inv_len = 1.0 / std::sqrt(nn);
+    n *= inv_len;
+    const double s = dn * inv_len;  // signed distance to the plane
     bu = std::max(bu, 0.0);
     bv = std::max(bv, 0.0);
     bw = std::max(bw, 0.0);
@@ -207,6 +230,10 @@ class SelfCollision final : public ConstraintModule {
   std::size_t node_count_ = 0;
   std::vector<std::array<std::int32_t, 3>> triangles_;
   SpatialHash hash_;
+  struct Pair {
+    std::int32_t node, triangle;
+  };
+  std::vector<Pair> pairs_;  // this step's candidates, in detection order
 };
 
 }  // namespace
