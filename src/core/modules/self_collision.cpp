@@ -2,19 +2,23 @@
 // triangles it does not belong to, so that layers of one cloth (a fold, a drape
 // piling on the floor) stay apart instead of passing through each other.
 //
-// After each step, per pass: each triangle's bounding box, grown by thickness,
-// goes into a spatial hash; each node asks the hash for the boxes containing
-// it, and for each such triangle over which the node lies (its projection on
-// the triangle's plane falls inside the triangle) and closer to that plane than
-// thickness, the pair is pushed apart along the triangle's normal until the gap
-// is thickness. The side it is pushed to is the side the node was on at the
-// start of the step, so a node that crossed the triangle during the step is
-// brought back rather than pushed on through. The push is shared like an
-// impulse: the node moves in proportion to its inverse mass, each triangle
-// vertex in proportion to its inverse mass times its barycentric weight, which
-// keeps the momentum of the pair and leaves pinned nodes where they are. The
-// pair's approaching normal velocity is removed the same way (an inelastic
-// contact); sliding along the triangle is left alone (no friction).
+// Detection: each triangle's bounding box, grown by thickness plus a margin,
+// goes into a spatial hash (spatial_hash.h), and each node asks it for the
+// boxes containing it; those (node, triangle) pairs are the candidates. They
+// serve the steps that follow until some node has moved half the margin, so a
+// cloth that moves slowly is not searched every step (candidates_valid says
+// why no contact is missed). After each step, `iterations` passes over the
+// candidates: a node that lies over its
+// triangle (its projection on the triangle's plane falls inside the triangle)
+// closer to that plane than thickness is pushed apart from the triangle along
+// the triangle's normal until the gap is thickness. It is pushed to the side it
+// was on at the start of the step, so a node that crossed the triangle during
+// the step is brought back rather than pushed on through. The push is shared
+// like an impulse: the node moves in proportion to its inverse mass, each
+// triangle vertex in proportion to its inverse mass times its barycentric
+// weight, which keeps the pair's momentum and leaves pinned nodes where they
+// are. The pair's approaching normal velocity is removed the same way (an
+// inelastic contact); sliding along the triangle is left alone (no friction).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -41,7 +45,7 @@ constexpr double kDegenerate = 1e-20;
 class SelfCollision final : public ConstraintModule {
  public:
   SelfCollision(const SelfCollisionSpec& spec, const ClothTopology& topology)
-      : thickness_(spec.thickness), iterations_(spec.iterations) {
+      : thickness_(spec.thickness), margin_(0.5 * spec.thickness), iterations_(spec.iterations) {
     if (!(spec.thickness > 0.0) || !std::isfinite(spec.thickness))
       throw std::invalid_argument("self_collision: thickness must be > 0");
     if (spec.iterations < 1) throw std::invalid_argument("self_collision: iterations must be >= 1");
@@ -59,10 +63,11 @@ class SelfCollision final : public ConstraintModule {
             (topology.rest_positions[t[(e + 1) % 3]] - topology.rest_positions[t[e]]).norm();
     }
     node_count_ = topology.rest_positions.size();
-    // Cells about as wide as a triangle's box (an edge plus thickness on either
+    ref_.resize(node_count_);
+    // Cells about as wide as a triangle's box (an edge plus the reach on either
     // side): most boxes are then filed once, and a cell holds a few triangles.
     const double mean_edge = triangles_.empty() ? 0.0 : edge_sum / (3.0 * triangles_.size());
-    const double cell = (std::isfinite(mean_edge) ? mean_edge : 0.0) + 2.0 * thickness_;
+    const double cell = (std::isfinite(mean_edge) ? mean_edge : 0.0) + 2.0 * (thickness_ + margin_);
     hash_.reset(cell, triangles_.size());
     // A node over a flat sheet has one or two candidates besides its own
     // triangles; folds have more. Grows (once) if a scene needs more.
@@ -73,7 +78,7 @@ class SelfCollision final : public ConstraintModule {
   Phase phase() const override { return self_contact; }
   std::size_t state_bytes() const override {
     return triangles_.capacity() * sizeof(triangles_[0]) + hash_.bytes() +
-           pairs_.capacity() * sizeof(Pair);
+           pairs_.capacity() * sizeof(Pair) + 3 * ref_.size() * sizeof(double);
   }
 
   void apply(const ClothNetwork& net, const StepSpan&, const ClothState& before,
@@ -82,27 +87,7 @@ class SelfCollision final : public ConstraintModule {
     if (after.size() != node_count_ || before.size() != node_count_ ||
         net.node_count() != node_count_)
       throw std::invalid_argument("self_collision: state size differs from the cloth's");
-    // Detection, once per step: the pairs whose node lies in the triangle's
-    // grown box, less a node's own triangles and pairs where nothing may move.
-    file_triangles(after);
-    pairs_.clear();
-    const double* im = net.masses.inverse_mass.data();
-    const double* fr = net.masses.free.data();
-    auto weight = [&](std::int32_t k) {
-      const auto u = static_cast<std::size_t>(k);
-      return fr[u] * im[u];
-    };
-    for (std::size_t i = 0; i < node_count_; ++i) {
-      const double p[3] = {after.x[i], after.y[i], after.z[i]};
-      const auto node = static_cast<std::int32_t>(i);
-      hash_.for_each_containing(p, [&](std::int32_t t) {
-        const auto& tri = triangles_[static_cast<std::size_t>(t)];
-        if (tri[0] == node || tri[1] == node || tri[2] == node) return;
-        if (weight(node) + weight(tri[0]) + weight(tri[1]) + weight(tri[2]) == 0.0)
-          return;  // all pinned
-        pairs_.push_back({node, t});
-      });
-    }
+    if (!candidates_valid(after)) detect(after);
     // Relaxation: each pass separates every pair still too close, in a fixed
     // order (Gauss-Seidel: a pair sees the corrections of the pairs before it).
     for (int pass = 0; pass < iterations_; ++pass) {
@@ -116,10 +101,47 @@ class SelfCollision final : public ConstraintModule {
   }
 
  private:
-  // Rebuilds the hash from the triangles' current boxes grown by thickness: a
-  // node within thickness of a triangle lies inside its grown box.
+  // Whether the candidates found at the last detection still hold every pair
+  // that can be within thickness now. Detection took the pairs whose node lay
+  // within thickness + margin of the triangle's box; if no node has moved more
+  // than margin / 2 since, a node now within thickness of a triangle was within
+  // thickness + margin of it then (it and the triangle's nearest point each
+  // moved margin / 2 at most), so the pair is among them.
+  bool candidates_valid(const ClothState& s) const {
+    if (!detected_) return false;
+    const double limit = 0.25 * margin_ * margin_;
+    for (std::size_t i = 0; i < node_count_; ++i) {
+      const double dx = s.x[i] - ref_.x[i], dy = s.y[i] - ref_.y[i], dz = s.z[i] - ref_.z[i];
+      if (!(dx * dx + dy * dy + dz * dz <= limit)) return false;  // NaN too: detect again
+    }
+    return true;
+  }
+
+  // The pairs whose node lies in the triangle's box grown by thickness +
+  // margin, less a node's own triangles, in node order. Pairs of pinned nodes
+  // are kept: a node may be unpinned before the next detection.
+  void detect(const ClothState& after) {
+    file_triangles(after);
+    pairs_.clear();
+    for (std::size_t i = 0; i < node_count_; ++i) {
+      const double p[3] = {after.x[i], after.y[i], after.z[i]};
+      const auto node = static_cast<std::int32_t>(i);
+      hash_.for_each_containing(p, [&](std::int32_t t) {
+        const auto& tri = triangles_[static_cast<std::size_t>(t)];
+        if (tri[0] != node && tri[1] != node && tri[2] != node) pairs_.push_back({node, t});
+      });
+    }
+    std::copy(after.x.begin(), after.x.end(), ref_.x.begin());
+    std::copy(after.y.begin(), after.y.end(), ref_.y.begin());
+    std::copy(after.z.begin(), after.z.end(), ref_.z.begin());
+    detected_ = true;
+  }
+
+  // Rebuilds the hash from the triangles' current boxes grown by thickness +
+  // margin: a node that close to a triangle lies inside its grown box.
   void file_triangles(const ClothState& s) {
     std::vector<Aabb>& boxes = hash_.boxes();
+    const double reach = thickness_ + margin_;
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       const auto& tri = triangles_[t];
       Aabb& b = boxes[t];
@@ -127,8 +149,8 @@ class SelfCollision final : public ConstraintModule {
       for (int a = 0; a < 3; ++a) {
         const NodeArray& c = *axis[a];
         const double u = c[tri[0]], v = c[tri[1]], w = c[tri[2]];
-        b.lo[a] = std::min({u, v, w}) - thickness_;
-        b.hi[a] = std::max({u, v, w}) + thickness_;
+        b.lo[a] = std::min({u, v, w}) - reach;
+        b.hi[a] = std::max({u, v, w}) + reach;
       }
     }
     hash_.build();
@@ -185,7 +207,8 @@ class SelfCollision final : public ConstraintModule {
     const double side = s0 > 0.0 ? 1.0 : s0 < 0.0 ? -1.0 : s >= 0.0 ? 1.0 : -1.0;
 
     // Moving the node by wp*k and vertex j by -b_j*w_j*k along the normal opens
-    // the gap by k * W: k = missing gap / W. Momentum: wp*m_p - sum b_j w_j m_j = 0.
+    // the gap by k * W: k = missing gap / W. For free nodes m * w = 1, so the
+    // momentum changes by k * (1 - sum b_j) = 0 (a pinned node absorbs its share).
     // W has a floor: when only a vertex of small weight b_j may move (the node
     // and the rest pinned), opening the whole gap would move it by gap / b_j, a
     // kick without bound; with the floor no vertex moves more than 4 gaps at once
@@ -226,6 +249,10 @@ class SelfCollision final : public ConstraintModule {
   }
 
   double thickness_;
+  // How much farther than thickness detection looks, so that its candidates
+  // serve the following steps until some node has moved margin / 2: a cloth at
+  // rest or sliding slowly is detected again only every many steps.
+  double margin_;
   int iterations_;
   std::size_t node_count_ = 0;
   std::vector<std::array<std::int32_t, 3>> triangles_;
@@ -233,7 +260,9 @@ class SelfCollision final : public ConstraintModule {
   struct Pair {
     std::int32_t node, triangle;
   };
-  std::vector<Pair> pairs_;  // this step's candidates, in detection order
+  std::vector<Pair> pairs_;  // the candidates, in detection order
+  NodeVectors ref_;          // positions at the last detection
+  bool detected_ = false;
 };
 
 }  // namespace
