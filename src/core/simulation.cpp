@@ -18,7 +18,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       settings_(settings),
       integrator_(make_integrator(settings.integrator, net_)),
       constraints_(std::move(constraints)),
-      in_place_(integrator_->steps_in_place() && constraints_.empty()),
+      start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       a_(initial),
       b_(initial),
       checkpoint_(initial),
@@ -112,11 +112,11 @@ void Simulation::begin_step() {
   }
 }
 
-void Simulation::constrain(ClothState& after, double h) {
+void Simulation::constrain(const StepStart& before, ClothState& after, double h) {
   const StepSpan span{time_, h};
   for (const auto& c : constraints_) {
     ScopedModuleTimer timer(c->clock);
-    c->apply(net_, span, *front_, after);
+    c->apply(net_, span, before, after);
   }
 }
 
@@ -154,10 +154,19 @@ void Simulation::fixed_step(double h) {
   begin_step();
   ensure_front_forces();
   // A fixed step is never rejected, so an integrator that can may write over
-  // the current state (the checkpoint still guards against divergence).
-  ClothState* out = in_place_ ? front_ : back_;
+  // the current state (the checkpoint still guards against divergence). With
+  // constraints, the start positions are kept aside first: copying three arrays
+  // costs less than writing the whole step to the other buffer.
+  const bool in_place = integrator_->steps_in_place();
+  ClothState* out = in_place ? front_ : back_;
+  if (in_place && !constraints_.empty()) {
+    std::copy(front_->x.begin(), front_->x.end(), start_.x.begin());
+    std::copy(front_->y.begin(), front_->y.end(), start_.y.begin());
+    std::copy(front_->z.begin(), front_->z.end(), start_.z.begin());
+  }
+  const StepStart before = in_place ? StepStart(start_) : StepStart(*front_);
   const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *out);
-  constrain(*out, h);
+  constrain(before, *out, h);
   force_evaluations_ += r.force_evaluations;
   cg_iterations_ += r.cg_iterations;
   front_forces_valid_ = false;
@@ -185,7 +194,7 @@ void Simulation::adaptive_frame(double frame_end) {
     if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
     const double h = std::min(tc, frame_end - time_);
     const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *back_);
-    constrain(*back_, h);
+    constrain(*front_, *back_, h);
     net_.net_forces(*back_, *force_back_);
     force_evaluations_ += r.force_evaluations + 1;
     cg_iterations_ += r.cg_iterations;

@@ -93,7 +93,7 @@ class Simulation {
   void fixed_step(double h);
   // The modules' hooks around one integrator step from *front_ (at time_) over h.
   void begin_step();
-  void constrain(ClothState& after, double h);
+  void constrain(const StepStart& before, ClothState& after, double h);
   void adaptive_frame(double frame_end);
   void ensure_front_forces();
   // The step's result is in the back buffer (swap it in) or already in front.
@@ -106,8 +106,9 @@ class Simulation {
   SolverSettings settings_;
   std::unique_ptr<Integrator> integrator_;
   std::vector<std::unique_ptr<ConstraintModule>> constraints_;
-  // A fixed step may overwrite its input unless a constraint needs the state it started from.
-  bool in_place_ = false;
+  // Where the nodes were when a fixed step taken in place began: what the
+  // constraints read as the start (sized only when there are constraints).
+  NodeVectors start_;
   ClothState a_, b_, checkpoint_;
   ClothState* front_ = &a_;
   ClothState* back_ = &b_;

@@ -80,7 +80,14 @@ class BoxShape {
       // A fast node may cross the whole box in one step (a thin table top):
       // it goes back to the face it came in through.
       int axis;
-      if (entered(b, d, axis)) return face(axis, b[axis] > 0.0 ? 1.0 : -1.0, d);
+      if (may_cross(b, d) && entered(b, d, axis)) return face(axis, b[axis] > 0.0 ? 1.0 : -1.0, d);
+      // Outside one pair of faces only (a node resting on the top): that face
+      // is the nearest point, no square root needed. The common case.
+      const int outside = (q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0);
+      if (outside == 1) {
+        q.maxCoeff(&axis);
+        return face(axis, d[axis] > 0.0 ? 1.0 : -1.0, d);
+      }
       const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
       const double dist = out.norm();
       return {dist, out / dist};  // away from the nearest point of the box
@@ -108,6 +115,13 @@ class BoxShape {
   }
 
  private:
+  // False when the step from b to d (relative to the centre) stays beyond one
+  // face (both ends outside the same face): then it cannot have crossed the box.
+  bool may_cross(const Vec3& b, const Vec3& d) const {
+    for (int k = 0; k < 3; ++k)
+      if ((b[k] > e_[k] && d[k] > e_[k]) || (b[k] < -e_[k] && d[k] < -e_[k])) return false;
+    return true;
+  }
   static bool overlaps(double a, double b, double center, double half) {
     return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
   }
@@ -187,11 +201,11 @@ class Collider final : public ConstraintModule {
   const char* type() const override { return type_; }
   Phase phase() const override { return ConstraintModule::contact; }
 
-  void apply(const ClothNetwork& net, const StepSpan& span, const ClothState& before,
+  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
              ClothState& after) override {
     const std::size_t n = after.size();
     const double reach = spec_.thickness + kTouch;
-    const double *bx = before.x.data(), *by = before.y.data(), *bz = before.z.data();
+    const double *bx = before.x, *by = before.y, *bz = before.z;
     const double *x = after.x.data(), *y = after.y.data(), *z = after.z.data();
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
     // near the shape, so a collider the cloth is far from costs one pass.
@@ -214,7 +228,7 @@ class Collider final : public ConstraintModule {
 
  private:
   void resolve(std::size_t i, const Contact& c, const Vec3& p, double node_friction, double h,
-               const ClothState& before, ClothState& after) const {
+               const StepStart& before, ClothState& after) const {
     const Vec3& n = c.normal;
     const Vec3 v = after.velocity(i);
     const double vn = v.dot(n);

@@ -72,6 +72,19 @@ class ForceModule : public SceneModule {
                           NodeVectors& force) const = 0;
 };
 
+// Where the nodes were when the step began (positions only: no constraint
+// needs more, and a step taken in place then needs to keep only these).
+struct StepStart {
+  const double* x;
+  const double* y;
+  const double* z;
+  std::size_t n;
+  StepStart(const ClothState& s) : x(s.x.data()), y(s.y.data()), z(s.z.data()), n(s.size()) {}
+  StepStart(const NodeVectors& p) : x(p.x.data()), y(p.y.data()), z(p.z.data()), n(p.size()) {}
+  Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  std::size_t size() const { return n; }
+};
+
 // The step a constraint corrects: from `before` at time t0 to `after` at t0 + h.
 struct StepSpan {
   double t0;
@@ -87,7 +100,7 @@ class ConstraintModule : public SceneModule {
   virtual Phase phase() const = 0;
   // Corrects `after` (positions and velocities) given the state the step
   // started from. Pinned nodes (free == 0) are moved only by prescribe modules.
-  virtual void apply(const ClothNetwork& net, const StepSpan& span, const ClothState& before,
+  virtual void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
                      ClothState& after) = 0;
 };
 

@@ -81,7 +81,7 @@ class SelfCollision final : public ConstraintModule {
            pairs_.capacity() * sizeof(Pair) + 3 * ref_.size() * sizeof(double);
   }
 
-  void apply(const ClothNetwork& net, const StepSpan&, const ClothState& before,
+  void apply(const ClothNetwork& net, const StepSpan&, const StepStart& before,
              ClothState& after) override {
     if (triangles_.empty()) return;
     if (after.size() != node_count_ || before.size() != node_count_ ||
@@ -158,8 +158,8 @@ class SelfCollision final : public ConstraintModule {
 
   // Pushes node i and triangle tri apart if i lies over tri closer than
   // thickness to its plane. Returns whether anything moved.
-  bool separate(const ClothNetwork& net, const ClothState& before, ClothState& after,
-                std::int32_t i, const std::array<std::int32_t, 3>& tri) const {
+  bool separate(const ClothNetwork& net, const StepStart& before, ClothState& after, std::int32_t i,
+                const std::array<std::int32_t, 3>& tri) const {
     const double* im = net.masses.inverse_mass.data();
     const double* fr = net.masses.free.data();
     const auto n0 = static_cast<std::size_t>(tri[0]), n1 = static_cast<std::size_t>(tri[1]),

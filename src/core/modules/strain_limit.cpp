@@ -66,7 +66,7 @@ class StrainLimit final : public ConstraintModule {
   // Steps whose sweeps ran out before every spring was within its limit.
   long unconverged_steps() const { return unconverged_; }
 
-  void apply(const ClothNetwork& net, const StepSpan& span, const ClothState&,
+  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart&,
              ClothState& after) override {
     if (net.masses.free != free_mask_) plan(net);  // pins changed (or first step)
     std::copy(after.x.begin(), after.x.end(), start_.x.begin());
