@@ -160,6 +160,34 @@ TEST(SceneModules, TheSphereDropEndsWithNoNodeInsideTheSphereOrFloor) {
   EXPECT_LT(lowest, 0.05);          // and it did reach the floor around the sphere
 }
 
+// The shipped flag: pinned along its pole, the wind along +x. Without the wind
+// it droops against the pole; with it, it flies out downwind.
+TEST(SceneModules, TheFlagFliesDownwind) {
+  auto mean_free_x_and_tip = [](bool wind) {
+    Scene scene = test::asset_scene("flag");
+    if (!wind) scene.modules.clear();
+    Simulation sim = scene.make_simulation();
+    EXPECT_EQ(sim.advance(2.0), RunStatus::ok) << sim.divergence_reason();
+    double x = 0, tip = -1e9;
+    int free = 0;
+    for (std::size_t i = 0; i < sim.state().size(); ++i) {
+      if (sim.network().masses.pinned(i)) continue;
+      x += sim.state().x[i];
+      tip = std::max(tip, sim.state().x[i]);
+      ++free;
+    }
+    return std::pair<double, double>(x / free, tip);
+  };
+  const auto [still_x, still_tip] = mean_free_x_and_tip(false);
+  const auto [windy_x, windy_tip] = mean_free_x_and_tip(true);
+  const double length = 29 * 0.04;
+  EXPECT_LT(still_x, 0.2 * length);  // hanging down along the pole
+  EXPECT_LT(still_tip, 0.6 * length);
+  EXPECT_GT(windy_x, 0.35 * length);  // flying out
+  EXPECT_GT(windy_x, still_x + 0.2);
+  EXPECT_GT(windy_tip, 0.6 * length);
+}
+
 TEST(SceneModulesInput, UnknownType) {
   expect_module_error(R"(    {"type": "tornado"})", "modules[0].type",
                       "unknown module type 'tornado' (expected one of: plane, box");
