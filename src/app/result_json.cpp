@@ -49,13 +49,14 @@ nlohmann::json simulation_result(const Simulation& sim, const std::string& scene
   nlohmann::json modules = nlohmann::json::array();
   double module_seconds = 0;
   for (const ModuleReport& m : sim.module_reports()) {
-    modules.push_back({{"type", m.type},
-                       {"seconds", m.seconds},
-                       {"calls", m.calls},
-                       {"state_bytes", m.state_bytes},
-                       {"declaration", m.declaration.empty()
-                                           ? nlohmann::json()
-                                           : nlohmann::json::parse(m.declaration, nullptr, false)}});
+    modules.push_back(
+        {{"type", m.type},
+         {"seconds", m.seconds},
+         {"calls", m.calls},
+         {"state_bytes", m.state_bytes},
+         {"declaration", m.declaration.empty()
+                             ? nlohmann::json()
+                             : nlohmann::json::parse(m.declaration, nullptr, false)}});
     module_seconds += m.seconds;
   }
   doc["modules"] = modules;
