@@ -1,0 +1,3 @@
+add_library(neurocloth_runtime STATIC simulation_thread.cpp)
+target_include_directories(neurocloth_runtime PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+target_link_libraries(neurocloth_runtime PUBLIC neurocloth_core)

@@ -1,0 +1,55 @@
+#pragma once
+// What the UI (or a script, or a test) may ask of the simulation thread. The
+// UI never writes simulation state: it posts one of these and the simulation
+// thread applies it between steps.
+#include <string>
+#include <variant>
+
+#include "integrator.h"
+#include "vec3.h"
+
+namespace neurocloth {
+
+// A named number, checked against parameter_ranges(): "viscosity" (N s/m, every
+// spring's damping), "friction" (every node's Coulomb coefficient), "dt" (s),
+// "gravity.x|y|z" (m/s^2), "wind.x|y|z" (m/s, scenes with wind), and
+// "input.NAME" (a linguistic input of the scene's fuzzy material, ramped in).
+struct SetParameter {
+  std::string name;
+  double value;
+};
+struct SetIntegrator {
+  IntegratorKind kind;
+};
+struct SetAdaptive {
+  bool on;
+};
+// Pulls node `node` with `force` (N) towards `anchor` (drawn as a line) until released.
+struct ApplyForce {
+  int node;
+  Vec3 force;
+  Vec3 anchor;
+};
+struct ReleaseForce {
+  int node;
+};
+struct SetPinned {
+  int node;
+  bool pinned;
+};
+struct SetPaused {
+  bool paused;
+};
+struct SingleStep {};  // one refresh interval (dt) while paused
+struct Reset {};       // the scene's initial state and parameters
+struct LoadScene {
+  std::string path;  // on failure the running scene keeps going; the error is reported
+};
+struct LoadRules {
+  std::string path;  // an FCL rule base for the current linguistic material
+};
+
+using SimCommand = std::variant<SetParameter, SetIntegrator, SetAdaptive, ApplyForce, ReleaseForce,
+                                SetPinned, SetPaused, SingleStep, Reset, LoadScene, LoadRules>;
+
+}  // namespace neurocloth

@@ -1,0 +1,2 @@
+// Placeholder: the simulation thread is being written.
+#include "simulation_thread.h"

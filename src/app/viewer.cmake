@@ -1,0 +1,1 @@
+# Placeholder: the window target is being written.

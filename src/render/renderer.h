@@ -1,0 +1,57 @@
+#pragma once
+// Draws a FrameSnapshot with OpenGL 3.3 core (through GLEW): the cloth smooth
+// shaded and lit on both sides (front and back in different tones, normals
+// recomputed every frame), the colliders, a ground grid; optionally wireframe,
+// springs coloured by family, nodes, and a strain colour map (blue -> red by
+// stretch) with its legend. It only ever reads the snapshot it is given.
+// The same code draws into a GLFW window and into an OSMesa buffer.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frame_snapshot.h"
+#include "orbit_camera.h"
+
+namespace neurocloth {
+
+struct RenderOptions {
+  bool wireframe = false;
+  bool springs = false;  // coloured by family
+  bool nodes = false;
+  bool strain = false;   // colour map by stretch, with a legend
+  bool grid = true;
+  bool colliders = true;
+  bool forces = true;    // applied forces as lines
+  float strain_max = 0.1f;  // stretch at the red end of the map (0.1 = 10%)
+};
+
+class Renderer {
+ public:
+  // Needs a current OpenGL 3.3 core context with GLEW initialised. Reads the
+  // shaders from `shader_dir` (default: the installed shaders/ folder); throws
+  // std::runtime_error naming the file and the compiler's message on failure.
+  explicit Renderer(const std::string& shader_dir = default_shader_dir());
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  void draw(const FrameSnapshot& snapshot, const OrbitCamera& camera, const RenderOptions& options,
+            int width, int height);
+  // The current framebuffer as RGBA, 8 bits per channel, top row first.
+  std::vector<std::uint8_t> read_pixels(int width, int height) const;
+
+  static std::string default_shader_dir();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes RGBA pixels (top row first) as a PNG; throws std::runtime_error naming the path.
+void write_png(const std::string& path, const std::vector<std::uint8_t>& rgba, int width,
+               int height);
+// Reads a PNG as RGBA (for tests comparing against reference images).
+std::vector<std::uint8_t> read_png(const std::string& path, int& width, int& height);
+
+}  // namespace neurocloth
