@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <cmath>
 
 #include "test_support.h"
@@ -198,6 +200,28 @@ TEST(Simulation, DeterministicHash) {
   EXPECT_EQ(test::state_hash(a.state()), test::state_hash(b.state()));
   EXPECT_EQ(test::state_hash(a.state()), 0xbb515bebb910f5eeull)
       << std::hex << test::state_hash(a.state());
+}
+
+}  // namespace
+}  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+// A moved simulation keeps stepping its own buffers (not the moved-from
+// object's): the same bits as one that never moved, mid-run and with modules.
+TEST(SimulationMove, AMovedSimulationStepsItsOwnBuffers) {
+  const Scene scene = test::asset_scene("curtain");
+  Simulation stay = scene.make_simulation();
+  auto first = std::make_unique<Simulation>(scene.make_simulation());
+  stay.advance(0.05);
+  first->advance(0.05);
+  Simulation moved(std::move(*first));
+  first.reset();  // nothing of the moved-from object may still be in use
+  stay.advance(0.05);
+  moved.advance(0.05);
+  EXPECT_EQ(test::state_hash(moved.state()), test::state_hash(stay.state()));
+  EXPECT_EQ(moved.steps(), stay.steps());
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// neurocloth-cli: batch access to the simulation core (simulate, relax, bench).
+// neurocloth-cli: batch access to the simulation core (simulate, relax, bench,
+// material) and headless snapshots (snapshot).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -55,6 +56,27 @@ int main(int argc, char** argv) {
     if (mat.rules.empty() && !mat.preset) throw CLI::RequiredError("--rules or --preset");
   });
 
+#ifdef NEUROCLOTH_HAS_SNAPSHOT
+  SnapshotOptions snap;
+  auto* snapshot = app.add_subcommand(
+      "snapshot", "Render a scene after --seconds to a PNG, headless (no display needed)");
+  snapshot->add_option("scene", snap.scene, "Scene file (JSON)")->required();
+  snapshot->add_option("--seconds", snap.seconds,
+                       "Simulated seconds before the picture (default 0)");
+  snapshot->add_option("--out", snap.out, "Where to write the PNG")->required();
+  snapshot->add_option("--size", snap.size, "WIDTHxHEIGHT in pixels (default 1280x720)");
+  snapshot->add_option("--camera", snap.camera,
+                       "yaw,pitch,distance[,tx,ty,tz] in radians and metres "
+                       "(default: frames the cloth and its colliders)");
+  snapshot->add_flag("--wireframe", snap.wireframe, "Draw the triangle edges");
+  snapshot->add_flag("--springs", snap.springs, "Draw the springs coloured by family");
+  snapshot->add_flag("--nodes", snap.nodes, "Draw the mass points (pinned ones red)");
+  snapshot->add_flag("--strain", snap.strain, "Colour the cloth by stretch, with a legend");
+  snapshot->add_option("--strain-max", snap.strain_max,
+                       "Stretch at the red end of the strain map (default 0.1 = 10%)");
+  snapshot->add_flag("--verbose", snap.verbose, "Report the OpenGL renderer and timings");
+#endif
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -66,6 +88,9 @@ int main(int argc, char** argv) {
     if (*relax) return run_relax(rel);
     if (*bench_cmd) return run_bench(bench);
     if (*material) return run_material(mat);
+#ifdef NEUROCLOTH_HAS_SNAPSHOT
+    if (*snapshot) return run_snapshot(snap);
+#endif
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitInputError;

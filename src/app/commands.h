@@ -50,4 +50,21 @@ struct MaterialOptions {
 };
 int run_material(const MaterialOptions& options);
 
+// Renders a scene after `seconds` to a PNG without a display (OSMesa). Built
+// only with NEUROCLOTH_BUILD_VIEWER (snapshot_command.cpp).
+struct SnapshotOptions {
+  std::string scene;
+  double seconds = 0;
+  std::string out;                    // FILE.png
+  std::string size = "1280x720";      // WIDTHxHEIGHT
+  std::optional<std::string> camera;  // yaw,pitch,distance[,tx,ty,tz]; default frames the scene
+  bool wireframe = false;
+  bool springs = false;
+  bool nodes = false;
+  bool strain = false;
+  std::optional<double> strain_max;  // the red end of the strain map, as a fraction
+  bool verbose = false;
+};
+int run_snapshot(const SnapshotOptions& options);
+
 }  // namespace neurocloth

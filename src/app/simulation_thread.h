@@ -1,10 +1,10 @@
 #pragma once
 // The simulation on its own thread. It owns the Simulation; others talk to it
 // only through commands (a queue) and read only what it publishes: the newest
-// FrameSnapshot (triple-buffered: the reader takes the newest without ever
-// blocking the simulation) and a SimulationStatus copy. It runs in real time
-// when it can keep up, and when it cannot it says so (simulated seconds per
-// wall second) instead of stalling anyone.
+// FrameSnapshot (from a small pool of buffers, snapshot_exchange.h: the reader
+// takes the newest without ever blocking the simulation) and a SimulationStatus
+// copy. It runs in real time when it can keep up, and when it cannot it says so
+// (simulated seconds per wall second) instead of stalling anyone.
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,19 +31,19 @@ struct SimulationStatus {
   std::string divergence_reason;
   double time = 0;  // simulated s
   long steps = 0, rejected_steps = 0;
-  double step_cap = 0;           // current t_c cap (adaptive) or dt, s
-  double steps_per_second = 0;   // accepted steps per wall second, recent
-  double realtime_ratio = 1;     // simulated s per wall s, recent (1 = keeping up)
+  double step_cap = 0;          // current t_c cap (adaptive) or dt, s
+  double steps_per_second = 0;  // accepted steps per wall second, recent
+  double realtime_ratio = 1;    // simulated s per wall s, recent (1 = keeping up)
   bool keeping_up = true;
   bool paused = false;
-  long commands_applied = 0;     // every command taken from the queue, applied or refused
+  long commands_applied = 0;  // every command taken from the queue, applied or refused
   long commands_refused = 0;
-  std::string last_error;        // the last refused command or failed load (one line)
+  std::string last_error;  // the last refused command or failed load (one line)
   IntegratorKind integrator = IntegratorKind::network;
   bool adaptive = false;
   double dt = 0, viscosity = 0, friction = 0;
   Vec3 gravity = Vec3(0, -9.81, 0);
-  std::optional<Vec3> wind;      // when the scene has a wind module
+  std::optional<Vec3> wind;                                     // when the scene has a wind module
   std::vector<std::pair<std::string, double>> material_inputs;  // linguistic, when fuzzy
   std::vector<double> energy_history;  // total energy, recent samples (oldest first)
   std::vector<ModuleReport> modules;
@@ -52,8 +52,8 @@ struct SimulationStatus {
 class SimulationThread {
  public:
   struct Options {
-    bool realtime = true;            // pace to the wall clock (false: as fast as it can)
-    double max_frame_seconds = 0.05; // simulated time per slice at most, before publishing
+    bool realtime = true;             // pace to the wall clock (false: as fast as it can)
+    double max_frame_seconds = 0.05;  // simulated time per slice at most, before publishing
     bool start_paused = false;
   };
   explicit SimulationThread(Scene scene, Options options);
@@ -67,7 +67,11 @@ class SimulationThread {
   std::shared_ptr<const FrameSnapshot> latest() const;
   SimulationStatus status() const;
   // Blocks until every command posted so far has been taken (for tests and scripts).
+  // Taken means applied (or refused): status() and latest() then show its effect.
   void wait_for_commands() const;
+  // The ranges SetParameter checks against for the scene running now (they
+  // change with LoadScene and LoadRules); like status(), a copy.
+  std::vector<ParameterRange> parameter_ranges() const;
 
  private:
   struct Impl;

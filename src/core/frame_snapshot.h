@@ -24,7 +24,7 @@ struct SceneGeometry {
   std::vector<std::array<std::int32_t, 3>> triangles;
   std::vector<std::int32_t> spring_a, spring_b;
   std::vector<SpringFamily> spring_family;
-  std::vector<float> rest_length;  // m, per spring (for the strain colour map)
+  std::vector<float> rest_length;     // m, per spring (for the strain colour map)
   std::vector<ModuleSpec> colliders;  // PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec only
   std::size_t node_count = 0;
 };
@@ -43,7 +43,9 @@ struct FrameSnapshot {
   double time = 0;  // simulated s
   long serial = 0;  // increases with every published snapshot
 
-  Vec3 node(std::size_t i) const { return {position[3 * i], position[3 * i + 1], position[3 * i + 2]}; }
+  Vec3 node(std::size_t i) const {
+    return {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
+  }
 };
 
 std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene);

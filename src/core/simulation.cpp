@@ -34,6 +34,40 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
   if (force_scale_ == 0.0) force_scale_ = 1e-9;
 }
 
+Simulation::Simulation(Simulation&& o) noexcept
+    : net_(std::move(o.net_)),
+      settings_(o.settings_),
+      integrator_(std::move(o.integrator_)),
+      constraints_(std::move(o.constraints_)),
+      start_(std::move(o.start_)),
+      a_(std::move(o.a_)),
+      b_(std::move(o.b_)),
+      checkpoint_(std::move(o.checkpoint_)),
+      front_(o.front_ == &o.a_ ? &a_ : &b_),
+      back_(o.back_ == &o.a_ ? &a_ : &b_),
+      force_a_(std::move(o.force_a_)),
+      force_b_(std::move(o.force_b_)),
+      force_front_(o.force_front_ == &o.force_a_ ? &force_a_ : &force_b_),
+      force_back_(o.force_back_ == &o.force_a_ ? &force_a_ : &force_b_),
+      front_forces_valid_(o.front_forces_valid_),
+      degenerate_(o.degenerate_),
+      monitor_(std::move(o.monitor_)),
+      ramp_(std::move(o.ramp_)),
+      status_(o.status_),
+      reason_(std::move(o.reason_)),
+      time_(o.time_),
+      checkpoint_time_(o.checkpoint_time_),
+      steps_(o.steps_),
+      checkpoint_steps_(o.checkpoint_steps_),
+      rejected_(o.rejected_),
+      force_evaluations_(o.force_evaluations_),
+      cg_iterations_(o.cg_iterations_),
+      steps_since_check_(o.steps_since_check_),
+      cap_(o.cap_),
+      former_force_(o.former_force_),
+      force_scale_(o.force_scale_),
+      observer_(std::move(o.observer_)) {}
+
 ClothNetwork& Simulation::mutable_network() {
   front_forces_valid_ = false;
   cap_ = -1;
@@ -56,6 +90,26 @@ void Simulation::set_state(const ClothState& s) {
   checkpoint_steps_ = steps_;
   front_forces_valid_ = false;
   former_force_ = -1;
+}
+
+void Simulation::set_solver_settings(const SolverSettings& settings) {
+  if (!(settings.dt > 0.0)) throw std::invalid_argument("dt must be > 0");
+  settings_ = settings;
+  integrator_ = make_integrator(settings_.integrator, net_);
+  start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());
+  mutable_network();  // drops cached forces and the step cap
+}
+
+void Simulation::set_pinned(std::size_t node, bool pinned) {
+  if (node >= net_.node_count()) throw std::out_of_range("no such node");
+  mutable_network().set_pinned(node, pinned);
+  if (!pinned) return;
+  front_->set_velocity(node, Vec3::Zero());
+  checkpoint_.set_velocity(node, Vec3::Zero());
+}
+
+void Simulation::rebase_divergence_check() {
+  monitor_ = DivergenceMonitor(net_, *front_, settings_.divergence);
 }
 
 void Simulation::ramp_to_material(const Material& material, int steps) {

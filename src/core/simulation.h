@@ -47,6 +47,11 @@ class Simulation {
   // force modules travel inside the network.
   Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
              std::vector<std::unique_ptr<ConstraintModule>> constraints = {});
+  // Moving re-points the front/back buffers at the new object's own members.
+  Simulation(Simulation&& other) noexcept;
+  Simulation& operator=(Simulation&&) = delete;
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // Propagates `seconds` of simulated time (0 does nothing). Stops early, with
   // the last good state, when the run diverges. The full check (finite state,
@@ -65,6 +70,19 @@ class Simulation {
   void ramp_to_material(const Material& material, int steps = 64);
   bool ramping() const { return ramp_.active(); }
   void set_state(const ClothState& state);
+  // Between steps (a live control): a new dt, integrator or adaptive switch. The
+  // integrator is rebuilt (its scratch and any cache belong to the old settings)
+  // and cached forces and the step cap are dropped; state and time carry on.
+  void set_solver_settings(const SolverSettings& settings);
+  // Pins or frees a node between steps. The mass layer masks only a pinned node's
+  // acceleration, so a node pinned while moving would drift on: its velocity is
+  // cleared (in the checkpoint too, so a rollback does not revive it).
+  void set_pinned(std::size_t node, bool pinned);
+  // After a live change of what the divergence budget was measured against
+  // (gravity, wind): the budget restarts from the current state, as at
+  // construction. Otherwise energy released under the old gravity (a long
+  // fall) would count as runaway once gravity changes.
+  void rebase_divergence_check();
 
   const ClothState& state() const { return *front_; }
   const SolverSettings& settings() const { return settings_; }

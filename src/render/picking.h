@@ -9,9 +9,9 @@
 namespace neurocloth {
 
 struct Pick {
-  int node = -1;         // -1: nothing picked
+  int node = -1;               // -1: nothing picked
   Vec3 point = Vec3(0, 0, 0);  // where the ray met the cloth (or the node)
-  double ray_t = 0;      // distance along the ray
+  double ray_t = 0;            // distance along the ray
 };
 
 Pick pick_node(const Ray& ray, const FrameSnapshot& snapshot, double tolerance);

@@ -19,10 +19,10 @@ struct RenderOptions {
   bool wireframe = false;
   bool springs = false;  // coloured by family
   bool nodes = false;
-  bool strain = false;   // colour map by stretch, with a legend
+  bool strain = false;  // colour map by stretch, with a legend
   bool grid = true;
   bool colliders = true;
-  bool forces = true;    // applied forces as lines
+  bool forces = true;       // applied forces as lines
   float strain_max = 0.1f;  // stretch at the red end of the map (0.1 = 10%)
 };
 
@@ -40,6 +40,9 @@ class Renderer {
             int width, int height);
   // The current framebuffer as RGBA, 8 bits per channel, top row first.
   std::vector<std::uint8_t> read_pixels(int width, int height) const;
+  // How often a GL buffer was (re)allocated so far: frames of a size already
+  // drawn allocate nothing, which the tests check with this count.
+  long buffer_allocations() const;
 
   static std::string default_shader_dir();
 
@@ -48,7 +51,9 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Writes RGBA pixels (top row first) as a PNG; throws std::runtime_error naming the path.
+// Writes RGBA pixels (top row first) as a PNG, atomically (a temporary file
+// beside it, renamed into place); throws std::runtime_error naming the path and
+// leaves no file behind.
 void write_png(const std::string& path, const std::vector<std::uint8_t>& rgba, int width,
                int height);
 // Reads a PNG as RGBA (for tests comparing against reference images).

@@ -6,6 +6,7 @@
 // docs/scenes.md ("air_drag", "wind") gives the keys and the formulas.
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "../cloth_network.h"
@@ -88,6 +89,19 @@ class Wind final : public ForceModule {
   const char* type() const override { return "wind"; }
   std::size_t state_bytes() const override {
     return (a_.capacity() + b_.capacity() + c_.capacity()) * sizeof(std::int32_t);
+  }
+
+  // "velocity.x|y|z": the mean wind, m/s. The current step's wind follows at
+  // once, at the gust factor already frozen for it.
+  bool set_parameter(const std::string& name, double value) override {
+    const int axis = name == "velocity.x"   ? 0
+                     : name == "velocity.y" ? 1
+                     : name == "velocity.z" ? 2
+                                            : -1;
+    if (axis < 0) return false;
+    base_[axis] = value;
+    wind_[axis] = value * factor_;
+    return true;
   }
 
   // The gust is sampled once per step, so every force evaluation of one step

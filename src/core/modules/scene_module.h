@@ -52,6 +52,10 @@ class SceneModule {
   // Bytes of per-node or per-triangle state the module holds (for the test
   // that an undeclared module allocates nothing, and for the viewer).
   virtual std::size_t state_bytes() const { return 0; }
+  // A live change of one declared number between steps ("velocity.x" for wind),
+  // for the viewer's controls. False when the module has no such parameter; the
+  // caller checks the range and drops cached forces (Simulation::mutable_network).
+  virtual bool set_parameter(const std::string& /*name*/, double /*value*/) { return false; }
   // The scene's declaration, as JSON text, for reports and the viewer.
   std::string declaration;
   mutable ModuleClock clock;

@@ -1,0 +1,304 @@
+#include "live_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <numeric>
+#include <sstream>
+
+#include "input_error.h"
+
+namespace neurocloth {
+
+namespace {
+
+std::optional<FuzzyMaterial> load_rules(const Scene& scene) {
+  if (!scene.fuzzy_material) return std::nullopt;
+  return FuzzyMaterial::load(scene.fuzzy_material->rules_path);
+}
+
+std::string number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+bool finite(const Vec3& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
+
+int axis_of(const std::string& name, const std::string& prefix) {
+  if (name.size() != prefix.size() + 1 || name.compare(0, prefix.size(), prefix) != 0) return -1;
+  const char c = name.back();
+  return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1;
+}
+
+// What the network uses for a per-spring or per-node weight: the value when all
+// agree (as after a material or a SetParameter), else the mean (learned weights).
+double typical(const std::vector<double>& v, double fallback) {
+  if (v.empty()) return fallback;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  if (*lo == *hi) return *lo;
+  return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
+}  // namespace
+
+// Built in one piece so that a scene that fails to load or build replaces
+// nothing. The Simulation is constructed in place from make_simulation()'s
+// result and never moved: it holds pointers into itself (front and back buffers).
+struct LiveScene::Run {
+  Scene scene;
+  Simulation sim;
+  std::optional<FuzzyMaterial> rules;
+  std::vector<ParameterRange> ranges;
+  std::shared_ptr<const SceneGeometry> geometry;
+
+  explicit Run(Scene s)
+      : scene(std::move(s)),
+        sim(scene.make_simulation()),
+        rules(load_rules(scene)),
+        ranges(parameter_ranges(scene, rules ? &*rules : nullptr)),
+        geometry(make_geometry(scene)) {}
+};
+
+LiveScene::LiveScene(Scene scene, bool paused) : paused_(paused) {
+  start(std::make_unique<Run>(std::move(scene)));
+}
+
+LiveScene::~LiveScene() = default;
+
+Simulation& LiveScene::simulation() {
+  return run_->sim;
+}
+const Simulation& LiveScene::simulation() const {
+  return run_->sim;
+}
+const Scene& LiveScene::scene() const {
+  return run_->scene;
+}
+const std::vector<ParameterRange>& LiveScene::ranges() const {
+  return run_->ranges;
+}
+const std::shared_ptr<const SceneGeometry>& LiveScene::geometry() const {
+  return run_->geometry;
+}
+
+void LiveScene::start(std::unique_ptr<Run> run) {
+  run_ = std::move(run);
+  const Scene& s = run_->scene;
+  viscosity_.reset();
+  friction_.reset();
+  inputs_.clear();
+  if (s.fuzzy_material) inputs_ = s.fuzzy_material->inputs;
+  wind_.reset();
+  for (const ModuleDeclaration& m : s.modules)
+    if (const auto* w = std::get_if<WindSpec>(&m.spec)) {
+      wind_ = w->velocity;
+      break;
+    }
+  forces_.clear();
+  ++generation_;
+}
+
+std::string LiveScene::apply(const SimCommand& command) {
+  // Anything a command throws (a file that will not read, a rule base that
+  // does not fit) is its refusal; the run goes on as it was.
+  try {
+    return std::visit([this](const auto& c) { return on(c); }, command);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+Material LiveScene::target_material() const {
+  Material m = run_->rules ? run_->rules->derive(inputs_).material : run_->scene.material;
+  if (viscosity_) m.viscosity = *viscosity_;
+  if (friction_) m.friction = *friction_;
+  return m;
+}
+
+std::string LiveScene::on(const SetParameter& c) {
+  const ParameterRange* r = find_range(run_->ranges, c.name);
+  if (!r) {
+    std::string known;
+    for (const ParameterRange& p : run_->ranges)
+      known += (known.empty() ? "" : ", ") + p.name;
+    return "SetParameter: unknown parameter '" + c.name + "' (this scene has: " + known + ")";
+  }
+  if (!(c.value >= r->min && c.value <= r->max))  // NaN fails too
+    return "SetParameter: " + c.name + " = " + number(c.value) + " is outside its range " +
+           describe_range(*r);
+  set_parameter(c.name, c.value);
+  return {};
+}
+
+// `name` and `value` are checked against the ranges already.
+void LiveScene::set_parameter(const std::string& name, double value) {
+  Simulation& sim = run_->sim;
+  if (name == "viscosity" || name == "friction") {
+    ClothNetwork& net = sim.mutable_network();
+    if (name == "viscosity") {
+      viscosity_ = value;
+      std::fill(net.springs.damping.begin(), net.springs.damping.end(), value);
+    } else {
+      friction_ = value;
+      std::fill(net.masses.friction.begin(), net.masses.friction.end(), value);
+    }
+    // A material ramp in progress would write its own value back: aim it at the new one.
+    if (sim.ramping()) sim.ramp_to_material(target_material());
+  } else if (name == "dt") {
+    SolverSettings s = sim.settings();
+    s.dt = value;
+    sim.set_solver_settings(s);
+  } else if (const int g = axis_of(name, "gravity."); g >= 0) {
+    sim.mutable_network().gravity[g] = value;
+    sim.rebase_divergence_check();  // the energy budget was for the old gravity
+  } else if (const int w = axis_of(name, "wind."); w >= 0) {
+    const std::string key = std::string("velocity.") + name.back();
+    for (const auto& m : sim.mutable_network().force_modules)
+      m->set_parameter(key, value);
+    (*wind_)[w] = value;
+    sim.rebase_divergence_check();  // and for the old wind
+  } else if (name.compare(0, 6, "input.") == 0) {
+    inputs_[name.substr(6)] = value;
+    sim.ramp_to_material(target_material());  // no jolt: the weights move over 64 steps
+  }
+}
+
+std::string LiveScene::on(const SetIntegrator& c) {
+  const bool known = std::find(std::begin(kAllIntegrators), std::end(kAllIntegrators), c.kind) !=
+                     std::end(kAllIntegrators);
+  if (!known)
+    return "SetIntegrator: unknown integrator " + std::to_string(static_cast<int>(c.kind)) +
+           " (expected one of: " + integrator_names() + ")";
+  SolverSettings s = run_->sim.settings();
+  s.integrator = c.kind;
+  run_->sim.set_solver_settings(s);
+  return {};
+}
+
+std::string LiveScene::on(const SetAdaptive& c) {
+  SolverSettings s = run_->sim.settings();
+  s.adaptive = c.on;
+  run_->sim.set_solver_settings(s);
+  return {};
+}
+
+std::string LiveScene::check_node(const char* command, int node) const {
+  const std::size_t n = run_->sim.network().node_count();
+  if (node >= 0 && static_cast<std::size_t>(node) < n) return {};
+  return std::string(command) + ": node " + std::to_string(node) +
+         " does not exist (the cloth has " + std::to_string(n) + " nodes, 0.." +
+         std::to_string(static_cast<long>(n) - 1) + ")";
+}
+
+std::string LiveScene::on(const ApplyForce& c) {
+  if (std::string why = check_node("ApplyForce", c.node); !why.empty()) return why;
+  if (!finite(c.force) || !finite(c.anchor)) return "ApplyForce: force and anchor must be finite";
+  run_->sim.set_external_force(static_cast<std::size_t>(c.node), c.force);
+  auto same = [&](const FrameSnapshot::AppliedForce& f) { return f.node == c.node; };
+  const auto it = std::find_if(forces_.begin(), forces_.end(), same);
+  if (it != forces_.end())
+    *it = {c.node, c.force, c.anchor};
+  else
+    forces_.push_back({c.node, c.force, c.anchor});
+  return {};
+}
+
+// Releasing a node that is not pulled is not an error: a UI may send it on
+// every mouse-up.
+std::string LiveScene::on(const ReleaseForce& c) {
+  if (std::string why = check_node("ReleaseForce", c.node); !why.empty()) return why;
+  run_->sim.set_external_force(static_cast<std::size_t>(c.node), Vec3::Zero());
+  forces_.erase(std::remove_if(forces_.begin(), forces_.end(),
+                               [&](const auto& f) { return f.node == c.node; }),
+                forces_.end());
+  return {};
+}
+
+std::string LiveScene::on(const SetPinned& c) {
+  if (std::string why = check_node("SetPinned", c.node); !why.empty()) return why;
+  run_->sim.set_pinned(static_cast<std::size_t>(c.node), c.pinned);
+  return {};
+}
+
+std::string LiveScene::on(const SetPaused& c) {
+  paused_ = c.paused;
+  return {};
+}
+
+std::string LiveScene::on(const SingleStep&) {
+  Simulation& sim = run_->sim;
+  if (!paused_) return "SingleStep: only while paused (the simulation is running)";
+  if (sim.status() != RunStatus::ok)
+    return "SingleStep: the run diverged (" + sim.divergence_reason() + "); Reset first";
+  sim.advance(sim.settings().dt);
+  return {};
+}
+
+std::string LiveScene::on(const Reset&) {
+  start(std::make_unique<Run>(run_->scene));
+  return {};
+}
+
+std::string LiveScene::on(const LoadScene& c) {
+  start(std::make_unique<Run>(load_scene(c.path)));
+  return {};
+}
+
+// The new rule base replaces the scene's: Reset then starts from the scene's
+// inputs under it. It must take the same inputs, and the current values must lie
+// in its ranges (the thread never lets an input be clamped silently).
+std::string LiveScene::on(const LoadRules& c) {
+  Scene& scene = run_->scene;
+  if (!run_->rules)
+    return "LoadRules: scene '" + scene.name +
+           "' gives its material as numbers; only a scene whose material is a rule base can "
+           "take new rules";
+  FuzzyMaterial rules = FuzzyMaterial::load(c.path);
+  for (const fuzzy::LinguisticVariable& v : rules.system().inputs) {
+    const auto it = inputs_.find(v.name);
+    if (it != inputs_.end() && !(it->second >= v.min && it->second <= v.max))
+      throw InputError(c.path, "FUZZIFY " + v.name,
+                       "the current value " + number(it->second) + " is outside its RANGE [" +
+                           number(v.min) + ", " + number(v.max) + "]");
+  }
+  const DerivedMaterial now = rules.derive(inputs_, c.path, "input");  // same names, or throws
+  const DerivedMaterial initial = rules.derive(scene.fuzzy_material->inputs, c.path, "input");
+  scene.material = initial.material;
+  scene.fuzzy_material->rules_path = c.path;
+  scene.fuzzy_material->notes = initial.report.notes;
+  run_->rules = std::move(rules);
+  run_->ranges = parameter_ranges(scene, &*run_->rules);
+  Material target = now.material;
+  if (viscosity_) target.viscosity = *viscosity_;
+  if (friction_) target.friction = *friction_;
+  run_->sim.ramp_to_material(target);
+  return {};
+}
+
+void LiveScene::describe(SimulationStatus& s) {
+  Simulation& sim = run_->sim;
+  const ClothNetwork& net = sim.network();
+  s.scene_name = run_->scene.name;
+  s.scene_path = run_->scene.path;
+  s.run = sim.status();
+  s.divergence_reason = sim.divergence_reason();
+  s.time = sim.time();
+  s.steps = sim.steps();
+  s.rejected_steps = sim.rejected_steps();
+  s.step_cap = sim.step_cap();
+  s.paused = paused_;
+  s.integrator = sim.settings().integrator;
+  s.adaptive = sim.settings().adaptive;
+  s.dt = sim.settings().dt;
+  s.viscosity = typical(net.springs.damping, viscosity_.value_or(run_->scene.material.viscosity));
+  s.friction = typical(net.masses.friction, friction_.value_or(run_->scene.material.friction));
+  s.gravity = net.gravity;
+  s.wind = wind_;
+  s.material_inputs.assign(inputs_.begin(), inputs_.end());
+  s.modules = sim.module_reports();
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,86 @@
+#pragma once
+// The scene the simulation thread runs, and what the user has changed about it
+// since it was loaded. Only the simulation thread touches it; every command is
+// checked here, and a refused command leaves everything as it was.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame_snapshot.h"
+#include "fuzzy_material.h"
+#include "scene.h"
+#include "sim_command.h"
+#include "simulation_thread.h"
+
+namespace neurocloth {
+
+// The ranges for `scene` with its rule base already loaded (nullptr: none).
+std::vector<ParameterRange> parameter_ranges(const Scene& scene, const FuzzyMaterial* rules);
+const ParameterRange* find_range(const std::vector<ParameterRange>& ranges,
+                                 const std::string& name);
+// "[0, 100] N s/m", for messages.
+std::string describe_range(const ParameterRange& range);
+
+class LiveScene {
+ public:
+  // Throws InputError when the scene's rule base cannot be read.
+  explicit LiveScene(Scene scene, bool paused = false);
+  ~LiveScene();
+  LiveScene(const LiveScene&) = delete;
+  LiveScene& operator=(const LiveScene&) = delete;
+
+  // Applies one command between steps: "" when done, else one line saying why
+  // it was refused (nothing changed then).
+  std::string apply(const SimCommand& command);
+
+  Simulation& simulation();
+  const Simulation& simulation() const;
+  const Scene& scene() const;
+  bool paused() const { return paused_; }
+  // Increases whenever the run restarts (Reset, LoadScene): time went back.
+  long generation() const { return generation_; }
+  const std::vector<ParameterRange>& ranges() const;
+  const std::shared_ptr<const SceneGeometry>& geometry() const;
+  const std::vector<FrameSnapshot::AppliedForce>& forces() const { return forces_; }
+
+  // Fills the status fields that describe the run and its parameters (those
+  // read from the network show what it really uses, mid-ramp included).
+  void describe(SimulationStatus& status);
+
+ private:
+  struct Run;  // a scene with everything built from it, replaced as a whole
+
+  std::string on(const SetParameter& c);
+  std::string on(const SetIntegrator& c);
+  std::string on(const SetAdaptive& c);
+  std::string on(const ApplyForce& c);
+  std::string on(const ReleaseForce& c);
+  std::string on(const SetPinned& c);
+  std::string on(const SetPaused& c);
+  std::string on(const SingleStep& c);
+  std::string on(const Reset& c);
+  std::string on(const LoadScene& c);
+  std::string on(const LoadRules& c);
+
+  void set_parameter(const std::string& name, double value);
+  // "" when `node` is a node of the cloth, else why not.
+  std::string check_node(const char* command, int node) const;
+  // The material the network should settle on: the rule base's for the current
+  // inputs (or the scene's own), with the user's viscosity and friction.
+  Material target_material() const;
+  // Starts `run` with the scene's own parameters and no user changes.
+  void start(std::unique_ptr<Run> run);
+
+  std::unique_ptr<Run> run_;
+  // What the user changed (cleared by Reset and LoadScene).
+  std::optional<double> viscosity_, friction_;
+  std::map<std::string, double> inputs_;  // linguistic inputs, fuzzy scenes only
+  std::optional<Vec3> wind_;              // the mean wind, scenes with wind only
+  std::vector<FrameSnapshot::AppliedForce> forces_;
+  bool paused_;
+  long generation_ = 0;
+};
+
+}  // namespace neurocloth

@@ -1,0 +1,208 @@
+#include "viewer_app.h"
+
+#include <cstdio>
+#include <thread>
+
+#include "panels.h"
+#include "ui_requests.h"
+#include "viewer_screenshot.h"
+
+namespace neurocloth {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+SimulationThread::Options thread_options(const ViewerOptions& options) {
+  SimulationThread::Options o;
+  o.start_paused = options.paused;
+  return o;
+}
+
+std::string scene_key(const std::string& path, std::size_t nodes) {
+  return path + "#" + std::to_string(nodes);
+}
+
+}  // namespace
+
+ViewerApp::ViewerApp(ViewerWindow& window, const Scene& scene, const ViewerOptions& options,
+                     const OrbitCamera& camera, std::optional<Script> script)
+    : window_(window),
+      options_(options),
+      sim_(scene, thread_options(options)),
+      scene_info_(scene),
+      scene_info_key_(scene_key(scene.path, scene_info_.node_count())),
+      camera_(camera),
+      start_camera_(camera),
+      renderer_(std::make_unique<Renderer>()),
+      sink_([this](SimCommand c) { sim_.post(std::move(c)); }),
+      handler_({sim_, camera_, requests_, sink_, [this](int node) { return node_mass(node); },
+                &report_}) {
+  if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
+  if (script) player_.emplace(std::move(*script));
+  window_.attach(handler_, !player_);
+}
+
+ViewerApp::~ViewerApp() = default;
+
+double ViewerApp::node_mass(int node) {
+  return scene_info_.node_mass(node, values_.inputs);
+}
+
+int ViewerApp::run() {
+  const Clock::time_point start = Clock::now();
+  while (!quit_ && !window_.close_requested() && !handler_.quit_requested()) {
+    frame(std::chrono::duration<double>(Clock::now() - start).count());
+    if (player_ && player_->done()) quit_ = true;
+  }
+  return finish();
+}
+
+void ViewerApp::frame(double elapsed) {
+  elapsed_ = elapsed;
+  window_.poll();
+  if (player_) player_->advance(elapsed, *this);
+  const std::shared_ptr<const FrameSnapshot> snapshot = sim_.latest();
+  const SimulationStatus status = sim_.status();
+  follow(status, *snapshot);
+  handler_.set_drag_gain(values_.drag_gain);
+  handler_.update();
+  stats_.sample(elapsed, status);
+  note_errors(elapsed, status);
+  carry_out_requests(*snapshot);
+  if (window_.minimised()) {
+    // Nothing to draw into; the simulation is not waiting for us anyway.
+    stats_.skipped();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return;
+  }
+  draw(status, *snapshot);
+  if (last_drawn_ >= 0) stats_.frame(elapsed, elapsed - last_drawn_);
+  last_drawn_ = elapsed;
+}
+
+// Keeps the UI's copy of the scene and its values in step with what runs.
+void ViewerApp::follow(const SimulationStatus& status, const FrameSnapshot& snapshot) {
+  const std::string key = scene_key(status.scene_path, snapshot.geometry->node_count);
+  if (key != scene_info_key_ && !status.scene_path.empty()) {
+    scene_info_key_ = key;  // tried once: a failure is shown, not retried every frame
+    try {
+      scene_info_ = SceneInfo(load_scene(status.scene_path));
+      if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
+    } catch (const std::exception& e) {
+      messages_.error = e.what();
+    }
+  }
+  values_.follow(status);
+  scene_info_.set_ranges(sim_.parameter_ranges());
+}
+
+void ViewerApp::carry_out_requests(const FrameSnapshot& snapshot) {
+  if (requests_.reset_camera) camera_ = start_camera_;
+  if (requests_.frame_camera && snapshot.geometry->node_count > 0) {
+    Vec3 lo = snapshot.node(0), hi = lo;
+    for (std::size_t i = 1; i < snapshot.geometry->node_count; ++i) {
+      lo = lo.cwiseMin(snapshot.node(i));
+      hi = hi.cwiseMax(snapshot.node(i));
+    }
+    const int w = window_.framebuffer_width(), h = window_.framebuffer_height();
+    camera_.frame(lo, hi, w > 0 && h > 0 ? double(w) / h : 1.0);
+  }
+  requests_.reset_camera = requests_.frame_camera = false;
+}
+
+void ViewerApp::draw(const SimulationStatus& status, const FrameSnapshot& snapshot) {
+  window_.begin_frame();
+  const int width = window_.framebuffer_width(), height = window_.framebuffer_height();
+  renderer_->draw(snapshot, camera_, render_, width, height);
+  // The picture of the cloth, before the panels are drawn over it (unless asked for).
+  if (requests_.screenshot && !requests_.screenshot_panels) take_screenshot();
+  PanelContext ctx{status, snapshot, scene_info_, values_, render_, requests_, messages_, sink_};
+  draw_controls(ctx);
+  window_.draw_ui();
+  if (requests_.screenshot && requests_.screenshot_panels) take_screenshot();
+  window_.swap();
+}
+
+void ViewerApp::take_screenshot() {
+  const std::string path = requests_.screenshot_path.empty()
+                               ? next_screenshot_path(scene_info_.name())
+                               : requests_.screenshot_path;
+  requests_.screenshot = requests_.screenshot_panels = false;
+  requests_.screenshot_path.clear();
+  const int width = window_.framebuffer_width(), height = window_.framebuffer_height();
+  try {
+    write_screenshot(*renderer_, path, width, height);
+    messages_.screenshot = path;
+    report_.screenshot(path, width, height);
+  } catch (const std::exception& e) {
+    show_error(elapsed_, e.what());
+  }
+}
+
+// Several scripted events may fail in one frame: each is reported as it happens.
+void ViewerApp::show_error(double t, const std::string& message) {
+  messages_.error = reported_ui_error_ = message;
+  report_.error(t, message);
+}
+
+// Every error line shown goes into the report too, once.
+void ViewerApp::note_errors(double elapsed, const SimulationStatus& status) {
+  if (messages_.error != reported_ui_error_) {
+    reported_ui_error_ = messages_.error;
+    if (!messages_.error.empty()) report_.error(elapsed, messages_.error);
+  }
+  if (status.last_error != reported_sim_error_) {
+    reported_sim_error_ = status.last_error;
+    if (!status.last_error.empty()) report_.error(elapsed, "simulation: " + status.last_error);
+  }
+}
+
+void ViewerApp::set(double t, const std::string& name, double value) {
+  const std::string refusal = request_parameter(scene_info_, values_, sink_, name, value);
+  if (!refusal.empty()) show_error(t, refusal);
+  report_.parameter(t, name, value, refusal);
+}
+
+void ViewerApp::screenshot(const std::string& path, bool panels) {
+  requests_.screenshot = true;
+  requests_.screenshot_path = path;
+  requests_.screenshot_panels = panels;
+}
+
+void ViewerApp::probe(double t, int node) {
+  report_.probe(t, node, *sim_.latest());
+}
+
+void ViewerApp::resize(int width, int height) {
+  // As the window system would tell it (0 x 0: minimised), then for real if it can be.
+  window_.resized(width, height, width, height);
+  window_.request_size(width, height);
+}
+
+void ViewerApp::load(const std::string& path) {
+  const std::string error = request_scene(path, sink_);
+  if (!error.empty()) show_error(elapsed_, error);
+}
+
+void ViewerApp::rules(const std::string& path) {
+  const std::string error = request_rules(scene_info_, path, sink_);
+  if (!error.empty()) show_error(elapsed_, error);
+}
+
+int ViewerApp::finish() {
+  if (!options_.report) return kViewerOk;
+  // The report shows the status after everything asked for has been applied.
+  sim_.wait_for_commands();
+  const SimulationStatus status = sim_.status();
+  note_errors(elapsed_, status);
+  try {
+    report_.write(*options_.report, status, stats_);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "neurocloth: %s\n", e.what());
+    return kViewerInputError;
+  }
+  return kViewerOk;
+}
+
+}  // namespace neurocloth

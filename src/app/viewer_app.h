@@ -1,0 +1,86 @@
+#pragma once
+// The window's frame loop. The simulation runs on its own thread; each frame
+// takes the newest published snapshot and status (never the live simulation),
+// hands input to the InputHandler, draws the snapshot with the Renderer and
+// the panels with ImGui. A minimised window draws nothing and the simulation
+// goes on.
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "orbit_camera.h"
+#include "panel_context.h"
+#include "renderer.h"
+#include "scene_info.h"
+#include "simulation_thread.h"
+#include "viewer_frame_stats.h"
+#include "viewer_input.h"
+#include "viewer_options.h"
+#include "viewer_report.h"
+#include "viewer_script_player.h"
+#include "viewer_window.h"
+
+namespace neurocloth {
+
+class ViewerApp : private ScriptPlayer::Target {
+ public:
+  // Throws std::runtime_error when the renderer cannot start (shaders).
+  ViewerApp(ViewerWindow& window, const Scene& scene, const ViewerOptions& options,
+            const OrbitCamera& camera, std::optional<Script> script);
+  ~ViewerApp() override;
+
+  // Runs until the window closes, Esc, or the script ends; writes the report.
+  // Returns the exit code.
+  int run();
+
+ private:
+  void frame(double elapsed);
+  void follow(const SimulationStatus& status, const FrameSnapshot& snapshot);
+  void carry_out_requests(const FrameSnapshot& snapshot);
+  void draw(const SimulationStatus& status, const FrameSnapshot& snapshot);
+  void take_screenshot();
+  void note_errors(double elapsed, const SimulationStatus& status);
+  void show_error(double t, const std::string& message);
+  double node_mass(int node);
+  int finish();
+
+  // ScriptPlayer::Target: scripted input goes where real input goes.
+  void cursor(double x, double y) override { handler_.cursor(x, y); }
+  void button(int b, bool pressed, int mods) override { handler_.button(b, pressed, mods); }
+  void scroll(double steps) override {
+    handler_.scroll(steps);
+    window_.scripted_wheel(steps);
+  }
+  void key(int k, int mods) override { handler_.key(k, mods); }
+  void set(double t, const std::string& name, double value) override;
+  void screenshot(const std::string& path, bool panels) override;
+  void probe(double t, int node) override;
+  void resize(int width, int height) override;
+  void load(const std::string& path) override;
+  void rules(const std::string& path) override;
+  void quit() override { quit_ = true; }
+
+  ViewerWindow& window_;
+  ViewerOptions options_;
+  SimulationThread sim_;
+  SceneInfo scene_info_;
+  std::string scene_info_key_;  // path and node count the SceneInfo was made for
+  UiValues values_;
+  RenderOptions render_;
+  WindowRequests requests_;
+  UiMessages messages_;
+  OrbitCamera camera_, start_camera_;
+  std::unique_ptr<Renderer> renderer_;
+  ViewerReport report_;
+  FrameStats stats_;
+  CommandSink sink_;  // to the simulation thread
+  InputHandler handler_;
+  std::optional<ScriptPlayer> player_;
+  bool quit_ = false;
+  double elapsed_ = 0;  // wall s since the first frame, at this frame
+  double last_drawn_ = -1;
+  std::string reported_ui_error_, reported_sim_error_;
+};
+
+}  // namespace neurocloth

@@ -1,0 +1,66 @@
+// neurocloth: the cloth in a window. Reads the scene (and script) first, so
+// bad input is reported even where no window can open; then opens the window
+// and runs the simulation on its own thread (docs/viewer.md).
+#include <cstdio>
+#include <exception>
+#include <optional>
+
+#include "input_error.h"
+#include "orbit_camera.h"
+#include "scene.h"
+#include "viewer_app.h"
+#include "viewer_options.h"
+#include "viewer_script.h"
+#include "viewer_sim_only.h"
+#include "viewer_window.h"
+
+namespace {
+
+using namespace neurocloth;
+
+// One line, naming what to run instead.
+int no_display(const std::string& why, const std::string& scene) {
+  std::fprintf(stderr,
+               "neurocloth: no display to open a window on (%s); for a picture without one run: "
+               "neurocloth-cli snapshot %s --out FILE.png\n",
+               why.c_str(), scene.c_str());
+  return kViewerNoDisplay;
+}
+
+int run(const ViewerOptions& options) {
+  Scene scene = load_scene(options.scene);
+  if (options.size) scene = resized_grid(scene, *options.size);
+  std::optional<Script> script;
+  if (options.script) script = load_script(*options.script);
+  OrbitCamera camera;
+  if (options.camera) camera = parse_camera(*options.camera);
+  if (options.sim_only) return run_sim_only(scene, options);
+
+  std::optional<ViewerWindow> window;
+  try {
+    window.emplace(options.width, options.height, "neurocloth - " + scene.name, options.vsync);
+  } catch (const NoDisplay& e) {
+    return no_display(e.what(), options.scene);
+  }
+  ViewerApp app(*window, scene, options, camera, std::move(script));
+  return app.run();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ViewerOptions options;
+  if (const auto code = parse_viewer_options(argc, argv, options)) return *code;
+  try {
+    return run(options);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "neurocloth: %s\n", e.what());
+    return kViewerInputError;
+  } catch (const std::invalid_argument& e) {  // --size on a scene without a grid, --camera
+    std::fprintf(stderr, "neurocloth: %s\n", e.what());
+    return kViewerUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "neurocloth: %s\n", e.what());
+    return kViewerInputError;
+  }
+}

@@ -1,0 +1,34 @@
+#include "viewer_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include "asset_paths.h"
+
+namespace neurocloth {
+
+std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& o) {
+  CLI::App app{"neurocloth: the cloth in a window (docs/viewer.md)"};
+  app.add_option("scene", o.scene, "Scene file (JSON); default: assets/scenes/table_drape.json");
+  app.add_option("--script", o.script, "Replay the timed input events in FILE (JSON), then exit");
+  app.add_option("--report", o.report, "Write what happened to FILE (JSON) on exit");
+  app.add_option("--size", o.size, "Run the scene's cloth as an N x N grid")
+      ->check(CLI::Range(2, 1024));
+  app.add_option("--camera", o.camera, "Start camera: yaw,pitch,distance[,tx,ty,tz] (rad, m)");
+  app.add_option("--width", o.width, "Window width, px")->check(CLI::Range(64, 16384));
+  app.add_option("--height", o.height, "Window height, px")->check(CLI::Range(64, 16384));
+  app.add_flag("--paused", o.paused, "Start paused");
+  app.add_flag("!--no-vsync", o.vsync, "Draw as fast as possible (for measuring frame rates)");
+  app.add_option("--sim-only", o.sim_only,
+                 "Run the simulation without a window for SECONDS (speed reference)")
+      ->check(CLI::PositiveNumber);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kViewerOk : kViewerUsage;
+  }
+  if (o.scene.empty()) o.scene = assets_directory() + "/scenes/table_drape.json";
+  return std::nullopt;
+}
+
+}  // namespace neurocloth

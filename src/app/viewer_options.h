@@ -1,0 +1,31 @@
+#pragma once
+// The window's command line: `neurocloth [SCENE] [--script FILE] [--report FILE] ...`.
+#include <optional>
+#include <string>
+
+namespace neurocloth {
+
+// Exit codes of `neurocloth`.
+inline constexpr int kViewerOk = 0;
+inline constexpr int kViewerInputError = 1;  // scene, script or shader that does not read
+inline constexpr int kViewerUsage = 2;
+inline constexpr int kViewerNoDisplay = 3;  // no window system to open a window on
+
+struct ViewerOptions {
+  std::string scene;                  // default: assets/scenes/table_drape.json
+  std::optional<std::string> script;  // replay timed input events, then exit
+  std::optional<std::string> report;  // write what happened (JSON) on exit
+  std::optional<int> size;            // run the scene's cloth as an N x N grid
+  std::optional<std::string> camera;  // "yaw,pitch,distance[,tx,ty,tz]"
+  int width = 1280, height = 720;     // window, px
+  bool paused = false;                // start paused
+  bool vsync = true;                  // off: draw as fast as it can (for measuring)
+  // Run the simulation thread alone, without a window, for this many wall
+  // seconds (for comparing its speed with and without the window).
+  std::optional<double> sim_only;
+};
+
+// Parses argv; on --help or a usage error prints the message and returns the exit code.
+std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& options);
+
+}  // namespace neurocloth

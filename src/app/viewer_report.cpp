@@ -1,0 +1,128 @@
+#include "viewer_report.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "ui_values.h"
+
+namespace neurocloth {
+
+namespace {
+
+using nlohmann::json;
+
+json vec(const Vec3& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
+
+// Where `node` is in `snapshot`, and when.
+json place(int node, const FrameSnapshot& snapshot) {
+  json at = {{"time", snapshot.time}, {"serial", snapshot.serial}};
+  if (node >= 0 && static_cast<std::size_t>(node) < snapshot.geometry->node_count)
+    at["position"] = vec(snapshot.node(node));
+  return at;
+}
+
+json status_json(const SimulationStatus& s) {
+  json inputs = json::object();
+  for (const auto& [name, value] : s.material_inputs)
+    inputs[name] = value;
+  json modules = json::array();
+  for (const ModuleReport& m : s.modules)
+    modules.push_back({{"type", m.type}, {"declaration", m.declaration}});
+  json out = {{"scene_name", s.scene_name},
+              {"scene_path", s.scene_path},
+              {"run", to_string(s.run)},
+              {"time", s.time},
+              {"steps", s.steps},
+              {"rejected_steps", s.rejected_steps},
+              {"step_cap", s.step_cap},
+              {"steps_per_second", s.steps_per_second},
+              {"realtime_ratio", s.realtime_ratio},
+              {"keeping_up", s.keeping_up},
+              {"paused", s.paused},
+              {"commands_applied", s.commands_applied},
+              {"commands_refused", s.commands_refused},
+              {"last_error", s.last_error},
+              {"integrator", to_string(s.integrator)},
+              {"adaptive", s.adaptive},
+              {"dt", s.dt},
+              {"viscosity", s.viscosity},
+              {"friction", s.friction},
+              {"gravity", vec(s.gravity)},
+              {"material_inputs", inputs},
+              {"modules", modules}};
+  if (s.wind) out["wind"] = vec(*s.wind);
+  return out;
+}
+
+}  // namespace
+
+void ViewerReport::picked(int node, double x, double y, const FrameSnapshot& snapshot) {
+  picks_.push_back({{"node", node}, {"pixel", {x, y}}, {"time", snapshot.time}});
+  if (node >= 0) drags_.push_back({{"node", node}, {"press", place(node, snapshot)}});
+}
+
+void ViewerReport::released(int node, const Vec3& target, const FrameSnapshot& snapshot) {
+  if (!drags_.empty() && drags_.back()["node"] == node) {
+    drags_.back()["release"] = place(node, snapshot);
+    drags_.back()["target"] = vec(target);
+  }
+}
+
+void ViewerReport::pinned(int node, bool pinned, const FrameSnapshot& snapshot) {
+  pins_.push_back({{"node", node}, {"pinned", pinned}, {"at", place(node, snapshot)}});
+}
+
+void ViewerReport::parameter(double t, const std::string& name, double value,
+                             const std::string& refusal) {
+  json set = {{"t", t}, {"name", name}, {"value", value}, {"accepted", refusal.empty()}};
+  if (!refusal.empty()) set["refusal"] = refusal;
+  sets_.push_back(set);
+}
+
+void ViewerReport::probe(double t, int node, const FrameSnapshot& snapshot) {
+  json p = place(node, snapshot);
+  p["t"] = t;
+  p["node"] = node;
+  if (node >= 0 && static_cast<std::size_t>(node) < snapshot.pinned.size())
+    p["pinned"] = snapshot.pinned[node] != 0;
+  probes_.push_back(p);
+}
+
+void ViewerReport::screenshot(const std::string& path, int width, int height) {
+  screenshots_.push_back({{"path", path}, {"width", width}, {"height", height}});
+}
+
+void ViewerReport::error(double t, const std::string& message) {
+  errors_.push_back({{"t", t}, {"message", message}});
+}
+
+void ViewerReport::write(const std::string& path, const SimulationStatus& status,
+                         const FrameStats& stats) const {
+  json sets = sets_;
+  // What the simulation shows for each parameter asked for, at the end.
+  for (json& set : sets)
+    if (const auto v = status_value(status, set["name"].get<std::string>()))
+      set["status_value"] = *v;
+  const json report = {{"picks", picks_},
+                       {"drags", drags_},
+                       {"pins", pins_},
+                       {"sets", sets},
+                       {"probes", probes_},
+                       {"screenshots", screenshots_},
+                       {"errors", errors_},
+                       {"frames",
+                        {{"drawn", stats.frames()},
+                         {"skipped", stats.skipped_frames()},
+                         {"median_fps", stats.median_fps()}}},
+                       {"simulation",
+                        {{"median_steps_per_second", stats.median_steps_per_second()},
+                         {"median_realtime_ratio", stats.median_realtime_ratio()}}},
+                       {"status", status_json(status)}};
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << report.dump(2) << "\n";
+  if (!out) throw std::runtime_error(path + ": cannot write the report");
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,40 @@
+#pragma once
+// What happened in a window session, for tests and scripts (--report FILE):
+// nodes picked, dragged and pinned with their positions read from the
+// published snapshots (not the picture), parameters asked for and what the
+// status then showed, probes, screenshots, errors, frame and step rates.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "frame_snapshot.h"
+#include "simulation_thread.h"
+#include "viewer_frame_stats.h"
+
+namespace neurocloth {
+
+class ViewerReport {
+ public:
+  // A left press: `node` is -1 when it missed the cloth.
+  void picked(int node, double x, double y, const FrameSnapshot& snapshot);
+  // `target`: where the cursor pulled the node last.
+  void released(int node, const Vec3& target, const FrameSnapshot& snapshot);
+  void pinned(int node, bool pinned, const FrameSnapshot& snapshot);
+  // A set request; `refusal` is empty when it was posted.
+  void parameter(double t, const std::string& name, double value, const std::string& refusal);
+  void probe(double t, int node, const FrameSnapshot& snapshot);
+  void screenshot(const std::string& path, int width, int height);
+  void error(double t, const std::string& message);
+
+  // Writes the report with the final status; throws std::runtime_error naming `path`.
+  void write(const std::string& path, const SimulationStatus& status,
+             const FrameStats& stats) const;
+
+ private:
+  nlohmann::json picks_ = nlohmann::json::array(), drags_ = nlohmann::json::array(),
+                 pins_ = nlohmann::json::array(), sets_ = nlohmann::json::array(),
+                 probes_ = nlohmann::json::array(), screenshots_ = nlohmann::json::array(),
+                 errors_ = nlohmann::json::array();
+};
+
+}  // namespace neurocloth

@@ -1,0 +1,50 @@
+#pragma once
+// A scripted session for tests and demos: timed input events read from JSON
+// and replayed through the same handlers as real input (docs/viewer.md has
+// the format). Times are wall seconds since the window's first frame.
+#include <string>
+#include <vector>
+
+namespace neurocloth {
+
+struct ScriptEvent {
+  enum class Type {
+    move,
+    press,
+    release,
+    scroll,
+    key,
+    set,
+    screenshot,
+    probe,
+    resize,
+    load,
+    rules,
+    quit
+  };
+  double t = 0;
+  Type type = Type::quit;
+  std::string field;  // "events[3]", for messages
+  // move: to (x, y) px, linearly over `duration` s; resize: width x height (x, y)
+  double x = 0, y = 0, duration = 0;
+  int button = 0;       // press / release: a GLFW mouse button
+  int mods = 0;         // press / release / key: GLFW modifier bits
+  int key = 0;          // key: a GLFW key code
+  double amount = 0;    // scroll: wheel steps (> 0 zooms in); set: the value
+  std::string name;     // set: parameter name; screenshot / load: path
+  int node = -1;        // probe: node whose position goes into the report
+  bool panels = false;  // screenshot: the whole window, controls included
+};
+
+struct Script {
+  std::string path;
+  std::vector<ScriptEvent> events;  // in time order
+};
+
+// Throws InputError naming the file, the field ("events[2].button") and its line.
+Script load_script(const std::string& path);
+
+// Names every event type, for messages and docs.
+const char* script_event_types();
+
+}  // namespace neurocloth

@@ -1,0 +1,39 @@
+#include "viewer_sim_only.h"
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "simulation_thread.h"
+#include "viewer_frame_stats.h"
+#include "viewer_report.h"
+
+namespace neurocloth {
+
+int run_sim_only(const Scene& scene, const ViewerOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  SimulationThread sim(scene);
+  FrameStats stats;
+  const Clock::time_point start = Clock::now();
+  for (;;) {
+    // Sampled at about the rate a window would read the status.
+    std::this_thread::sleep_for(std::chrono::milliseconds(16));
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (elapsed >= *options.sim_only) break;
+    stats.sample(elapsed, sim.status());
+  }
+  const SimulationStatus status = sim.status();
+  std::printf("%s: %.0f steps/s (median), %.2fx real time, t = %.2f s\n", status.scene_name.c_str(),
+              stats.median_steps_per_second(), stats.median_realtime_ratio(), status.time);
+  if (options.report) {
+    try {
+      ViewerReport().write(*options.report, status, stats);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "neurocloth: %s\n", e.what());
+      return kViewerInputError;
+    }
+  }
+  return kViewerOk;
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,24 @@
+#pragma once
+// What a snapshot occupies in space, and the camera that shows all of it: the
+// default view of the headless snapshots (and of the window's "frame" action).
+#include "frame_snapshot.h"
+#include "orbit_camera.h"
+
+namespace neurocloth {
+
+struct Bounds {
+  Vec3 lo = Vec3::Constant(1e300);
+  Vec3 hi = Vec3::Constant(-1e300);
+  bool empty() const { return !(lo.x() <= hi.x()); }
+  void add(const Vec3& p);
+};
+
+// The cloth's nodes and the finite colliders (boxes, spheres, capsules);
+// planes are unbounded and left out. Non-finite positions are skipped.
+Bounds snapshot_bounds(const FrameSnapshot& snapshot);
+
+// The default camera (yaw and pitch) moved to frame snapshot_bounds for an
+// image of the given aspect (width / height); the default camera when empty.
+OrbitCamera framing_camera(const FrameSnapshot& snapshot, double aspect);
+
+}  // namespace neurocloth

@@ -1,0 +1,48 @@
+#include "parameter_input.h"
+
+#include <imgui.h>
+
+namespace neurocloth {
+
+namespace {
+
+void range_tooltip(const ParameterRange* range) {
+  if (range && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s: %s", range->name.c_str(), range_text(*range).c_str());
+}
+
+}  // namespace
+
+void parameter_field(PanelContext& ctx, const char* label, const std::string& name) {
+  double* shown = ctx.values.field(name);
+  if (!shown) return;
+  // Edit a copy: the UI value changes only when the simulation is asked to follow.
+  double typed = *shown;
+  if (ImGui::InputDouble(label, &typed, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue) &&
+      typed != *shown) {
+    const std::string refusal = request_parameter(ctx.scene, ctx.values, ctx.post, name, typed);
+    if (!refusal.empty()) ctx.messages.error = refusal;
+  }
+  range_tooltip(ctx.scene.range(name));
+}
+
+void parameter_slider(PanelContext& ctx, const char* label, const std::string& name) {
+  double* shown = ctx.values.field(name);
+  const ParameterRange* range = ctx.scene.range(name);
+  if (!shown) return;
+  if (!range) {
+    parameter_field(ctx, label, name);  // the refusal will say why
+    return;
+  }
+  double dragged = *shown;
+  // No AlwaysClamp: a ctrl+click typed value out of range is refused, not clamped silently.
+  if (ImGui::SliderScalar(label, ImGuiDataType_Double, &dragged, &range->min, &range->max,
+                          "%.3g") &&
+      dragged != *shown) {
+    const std::string refusal = request_parameter(ctx.scene, ctx.values, ctx.post, name, dragged);
+    if (!refusal.empty()) ctx.messages.error = refusal;
+  }
+  range_tooltip(range);
+}
+
+}  // namespace neurocloth

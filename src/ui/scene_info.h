@@ -1,0 +1,47 @@
+#pragma once
+// The UI's own copy of the running scene: what the panels need that the status
+// does not carry (valid parameter ranges, node masses for the drag force, the
+// rule base to plot). Built on the UI thread from a Scene value; the simulation
+// thread has its own copy and is never asked.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fuzzy_view.h"
+#include "scene.h"
+#include "simulation_thread.h"
+
+namespace neurocloth {
+
+class SceneInfo {
+ public:
+  SceneInfo() = default;
+  // Throws InputError when the scene's rule base cannot be read.
+  explicit SceneInfo(const Scene& scene);
+
+  const std::string& name() const { return name_; }
+  const std::string& path() const { return path_; }
+  std::size_t node_count() const { return node_mass_.size(); }
+  const std::vector<ParameterRange>& ranges() const { return ranges_; }
+  // The simulation thread's ranges for what runs now (they change with LoadRules).
+  void set_ranges(std::vector<ParameterRange> ranges) { ranges_ = std::move(ranges); }
+  const ParameterRange* range(const std::string& name) const;
+  // kg: as the scene was loaded, or for a linguistic material, the node's share
+  // of the cloth times the node mass the rule base derives from `inputs` (what
+  // the simulation is ramping towards).
+  double node_mass(int node, const std::vector<std::pair<std::string, double>>& inputs);
+  const Material& material() const { return material_; }
+
+  // Set for a linguistic material.
+  std::optional<FuzzyView>& fuzzy() { return fuzzy_; }
+  const std::optional<FuzzyView>& fuzzy() const { return fuzzy_; }
+
+ private:
+  std::string name_, path_;
+  std::vector<ParameterRange> ranges_;
+  std::vector<double> node_mass_, mass_share_;
+  Material material_;
+  std::optional<FuzzyView> fuzzy_;
+};
+
+}  // namespace neurocloth

@@ -1,0 +1,61 @@
+// The Solver panel: how the network is propagated (integrator, step, adaptive,
+// damping, friction) and how it is doing (t_c, rejections, speed, energy).
+#include <imgui.h>
+
+#include <iterator>
+#include <vector>
+
+#include "panels.h"
+#include "parameter_input.h"
+
+namespace neurocloth {
+
+namespace {
+
+void settings(PanelContext& ctx) {
+  UiValues& v = ctx.values;
+  const char* current = to_string(kAllIntegrators[v.integrator]);
+  if (ImGui::BeginCombo("integrator", current)) {
+    for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+      if (ImGui::Selectable(to_string(kAllIntegrators[i]), v.integrator == static_cast<int>(i))) {
+        v.integrator = static_cast<int>(i);
+        ctx.post(SetIntegrator{kAllIntegrators[i]});
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::Checkbox("adaptive (paper, Table 1)", &v.adaptive)) ctx.post(SetAdaptive{v.adaptive});
+  parameter_field(ctx, v.adaptive ? "refresh interval, s" : "time step, s", "dt");
+  parameter_field(ctx, "damping (viscosity), N s/m", "viscosity");
+  parameter_field(ctx, "friction", "friction");
+}
+
+void progress(const SimulationStatus& s) {
+  ImGui::Text("t = %.3f s, %ld steps (%ld rejected)", s.time, s.steps, s.rejected_steps);
+  ImGui::Text("t_c = %.3g s, %.0f steps/s", s.step_cap, s.steps_per_second);
+  if (!s.keeping_up)
+    ImGui::TextColored(ImVec4(1, 0.7f, 0.2f, 1), "not keeping up: %.2fx real time",
+                       s.realtime_ratio);
+  if (s.run == RunStatus::diverged)
+    ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "diverged: %s", s.divergence_reason.c_str());
+}
+
+void energy_plot(const SimulationStatus& s) {
+  if (s.energy_history.empty()) return;
+  std::vector<float> e(s.energy_history.begin(), s.energy_history.end());
+  char label[48];
+  std::snprintf(label, sizeof label, "%.4g J", s.energy_history.back());
+  ImGui::PlotLines("##energy", e.data(), static_cast<int>(e.size()), 0, label, FLT_MAX, FLT_MAX,
+                   ImVec2(ImGui::GetContentRegionAvail().x, 60));
+  ImGui::TextDisabled("total energy, recent samples");
+}
+
+}  // namespace
+
+void solver_panel(PanelContext& ctx) {
+  settings(ctx);
+  ImGui::Separator();
+  progress(ctx.status);
+  energy_plot(ctx.status);
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,65 @@
+#include "ui_requests.h"
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+namespace neurocloth {
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+std::string range_text(const ParameterRange& range) {
+  return number(range.min) + " .. " + number(range.max) +
+         (range.unit.empty() ? "" : " " + range.unit);
+}
+
+std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                              const std::string& name, double value) {
+  const ParameterRange* range = scene.range(name);
+  if (!range) {
+    std::string known;
+    for (const ParameterRange& r : scene.ranges())
+      known += (known.empty() ? "" : ", ") + r.name;
+    return "no parameter '" + name + "' in this scene (it has: " + known + ")";
+  }
+  if (!std::isfinite(value) || value < range->min || value > range->max)
+    return name + " = " + number(value) + " refused: valid range " + range_text(*range);
+  values.assign(name, value);
+  post(SetParameter{name, value});
+  return "";
+}
+
+std::string request_scene(const std::string& path, const CommandSink& post) {
+  try {
+    load_scene(path);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  post(LoadScene{path});
+  return "";
+}
+
+std::string request_rules(SceneInfo& scene, const std::string& path, const CommandSink& post) {
+  if (!scene.fuzzy())
+    return "this scene's material is given as numbers; a rule base needs a linguistic "
+           "material (\"material\": {\"rules\", \"inputs\"})";
+  // Read into a new view first: emplace would drop the current one before a failed read.
+  try {
+    FuzzyView view(path);
+    scene.fuzzy() = std::move(view);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  post(LoadRules{path});
+  return "";
+}
+
+}  // namespace neurocloth

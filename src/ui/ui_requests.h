@@ -1,0 +1,31 @@
+#pragma once
+// What the UI asks of the simulation, checked here first (validate at the
+// boundary): a value out of range, a scene or rule base that does not read is
+// refused on the UI side with a message naming why (range, file, line), and
+// nothing is posted. Panels and the window's script player both go through
+// these, so a scripted change is handled exactly as a typed one.
+#include <string>
+
+#include "panel_context.h"
+
+namespace neurocloth {
+
+// Posts SetParameter{name, value} and mirrors it in `values` when it is valid;
+// otherwise returns why not (e.g. "viscosity = 5 refused: valid range 0 .. 2 N s/m").
+// An empty string means it was posted.
+std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                              const std::string& name, double value);
+
+// Reads the scene file here (so a bad one is named at once), then posts
+// LoadScene; the simulation loads it itself and keeps the running scene on
+// failure. Returns the error, or "" when posted.
+std::string request_scene(const std::string& path, const CommandSink& post);
+
+// Reads the rule base here, installs it in `scene`'s FuzzyView and posts
+// LoadRules. Returns the error, or "" when posted.
+std::string request_rules(SceneInfo& scene, const std::string& path, const CommandSink& post);
+
+// "0 .. 2 N s/m" for a tooltip or a refusal.
+std::string range_text(const ParameterRange& range);
+
+}  // namespace neurocloth

@@ -1,0 +1,56 @@
+#pragma once
+// The UI's own copy of every setting the panels show. Widgets bind to these,
+// never to simulation fields; an edit becomes a command (SetParameter, ...).
+// They follow the simulation's status only when it starts over (a scene loads
+// or is reset): a slider being dragged is then never pulled back by a status
+// that lags a few commands behind it.
+#include <array>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "simulation_thread.h"
+
+namespace neurocloth {
+
+struct UiValues {
+  int integrator = 0;  // index into kAllIntegrators
+  bool adaptive = false;
+  double dt = 0, viscosity = 0, friction = 0;
+  std::array<double, 3> gravity{0, -9.81, 0};
+  bool has_wind = false;
+  std::array<double, 3> wind{0, 0, 0};
+  std::vector<std::pair<std::string, double>> inputs;  // linguistic, when fuzzy
+
+  // The window's own settings (no simulation field behind them).
+  // The mouse drag's pull per kg and metre, 1/s^2: stiff enough that a node
+  // drags its neighbours along (4000 s^-2 is omega = 63 rad/s, below the
+  // springs' own frequencies in the shipped scenes, so it adds no instability).
+  double drag_gain = 4000;
+
+  // Text fields (ImGui edits plain char buffers).
+  std::array<char, 512> scene_path{};
+  std::array<char, 512> rules_path{};
+  int preset = 0;  // index into preset_names()
+
+  // Copies every setting from `status` when the run started over since the last call.
+  void follow(const SimulationStatus& status);
+  // Mirrors a value set by name ("viscosity", "gravity.y", "input.mass", ...);
+  // false when no field has that name.
+  bool assign(const std::string& name, double value);
+  double* field(const std::string& name);
+
+ private:
+  void copy_from(const SimulationStatus& status);
+  std::string followed_path_;
+  double followed_time_ = -1;
+  bool followed_once_ = false;
+};
+
+// The value `name` has in `status` (the same names as SetParameter), if any.
+std::optional<double> status_value(const SimulationStatus& status, const std::string& name);
+
+void copy_text(std::array<char, 512>& buffer, const std::string& text);
+
+}  // namespace neurocloth

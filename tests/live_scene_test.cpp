@@ -1,0 +1,257 @@
+// Commands applied to a running scene, on one thread: each reaches the network
+// (or is refused with a message naming the parameter and its range), and a
+// refused command changes nothing.
+#include "live_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+
+namespace neurocloth {
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+bool all_equal(const std::vector<double>& v, double x) {
+  return std::all_of(v.begin(), v.end(), [x](double e) { return e == x; });
+}
+
+std::vector<std::string> names(const std::vector<ParameterRange>& ranges) {
+  std::vector<std::string> n;
+  for (const ParameterRange& r : ranges)
+    n.push_back(r.name);
+  return n;
+}
+
+TEST(LiveScene, RangesDependOnTheScene) {
+  using V = std::vector<std::string>;
+  const V base = {"viscosity", "friction", "dt", "gravity.x", "gravity.y", "gravity.z"};
+  EXPECT_EQ(names(parameter_ranges(test::asset_scene("hanging"))), base);
+  V wind = base;
+  wind.insert(wind.end(), {"wind.x", "wind.y", "wind.z"});
+  EXPECT_EQ(names(parameter_ranges(test::asset_scene("flag"))), wind);
+
+  // A fuzzy material adds its rule base's inputs, with the rule base's ranges.
+  const Scene fuzzy = test::asset_scene("hanging_fuzzy");
+  const auto ranges = parameter_ranges(fuzzy);
+  const FuzzyMaterial rules = FuzzyMaterial::load(fuzzy.fuzzy_material->rules_path);
+  ASSERT_EQ(ranges.size(), base.size() + rules.system().inputs.size());
+  for (const auto& v : rules.system().inputs) {
+    const ParameterRange* r = find_range(ranges, "input." + v.name);
+    ASSERT_NE(r, nullptr) << v.name;
+    EXPECT_EQ(r->min, v.min);
+    EXPECT_EQ(r->max, v.max);
+  }
+  const ParameterRange* visc = find_range(ranges, "viscosity");
+  ASSERT_NE(visc, nullptr);
+  EXPECT_EQ(describe_range(*visc), "[0, 100] N s/m");
+  EXPECT_EQ(find_range(ranges, "wind.x"), nullptr);
+}
+
+TEST(LiveScene, ViscosityAndFrictionReachEverySpringAndNode) {
+  LiveScene live(test::asset_scene("hanging"));
+  EXPECT_EQ(live.apply(SetParameter{"viscosity", 2.5}), "");
+  EXPECT_EQ(live.apply(SetParameter{"friction", 0.7}), "");
+  EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 2.5));
+  EXPECT_TRUE(all_equal(live.simulation().network().masses.friction, 0.7));
+  SimulationStatus s;
+  live.describe(s);
+  EXPECT_EQ(s.viscosity, 2.5);
+  EXPECT_EQ(s.friction, 0.7);
+}
+
+TEST(LiveScene, SolverParametersReachTheSimulation) {
+  LiveScene live(test::asset_scene("hanging"));
+  EXPECT_EQ(live.apply(SetParameter{"dt", 2e-4}), "");
+  EXPECT_EQ(live.apply(SetIntegrator{IntegratorKind::rk4}), "");
+  EXPECT_EQ(live.apply(SetAdaptive{true}), "");
+  const SolverSettings& s = live.simulation().settings();
+  EXPECT_EQ(s.dt, 2e-4);
+  EXPECT_EQ(s.integrator, IntegratorKind::rk4);
+  EXPECT_TRUE(s.adaptive);
+  EXPECT_EQ(live.apply(SetParameter{"gravity.x", 3}), "");
+  EXPECT_EQ(live.simulation().network().gravity, Vec3(3, -9.81, 0));
+}
+
+TEST(LiveScene, OutOfRangeAndUnknownParametersAreRefusedAndChangeNothing) {
+  LiveScene live(test::asset_scene("hanging"));
+  const std::string high = live.apply(SetParameter{"viscosity", 500});
+  EXPECT_TRUE(contains(high, "viscosity")) << high;
+  EXPECT_TRUE(contains(high, "[0, 100] N s/m")) << high;
+  EXPECT_TRUE(contains(live.apply(SetParameter{"dt", 0.5}), "[1e-05, 0.1] s"));
+  EXPECT_TRUE(contains(live.apply(SetParameter{"friction", std::nan("")}), "friction"));
+  const std::string unknown = live.apply(SetParameter{"viscosty", 1});
+  EXPECT_TRUE(contains(unknown, "unknown parameter 'viscosty'")) << unknown;
+  EXPECT_TRUE(contains(unknown, "viscosity")) << unknown;  // lists what there is
+  EXPECT_TRUE(contains(live.apply(SetParameter{"wind.x", 1}), "unknown parameter 'wind.x'"));
+  EXPECT_TRUE(contains(live.apply(SetParameter{"input.mass", 0.5}), "unknown parameter"));
+  EXPECT_FALSE(live.apply(SetIntegrator{static_cast<IntegratorKind>(42)}).empty());
+  EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 0.05));
+  EXPECT_EQ(live.simulation().settings().dt, 1e-3);
+  EXPECT_EQ(live.simulation().settings().integrator, IntegratorKind::network);
+}
+
+TEST(LiveScene, NodeIndicesAreChecked) {
+  LiveScene live(test::asset_scene("hanging"));
+  const int n = static_cast<int>(live.simulation().network().node_count());
+  for (int bad : {-1, n}) {
+    const std::string why = live.apply(ApplyForce{bad, Vec3(1, 0, 0), Vec3::Zero()});
+    EXPECT_TRUE(contains(why, "node " + std::to_string(bad))) << why;
+    EXPECT_TRUE(contains(why, "0.." + std::to_string(n - 1))) << why;
+    EXPECT_FALSE(live.apply(ReleaseForce{bad}).empty());
+    EXPECT_FALSE(live.apply(SetPinned{bad, true}).empty());
+  }
+  EXPECT_FALSE(live.apply(ApplyForce{3, Vec3(std::nan(""), 0, 0), Vec3::Zero()}).empty());
+  EXPECT_TRUE(live.forces().empty());
+}
+
+TEST(LiveScene, ForcesAreRememberedUntilReleased) {
+  LiveScene live(test::asset_scene("hanging"));
+  EXPECT_EQ(live.apply(ApplyForce{399, Vec3(0, 0, 0.5), Vec3(0, 0, 2)}), "");
+  EXPECT_EQ(live.apply(ApplyForce{399, Vec3(0, 0, 0.7), Vec3(0, 0, 3)}), "");  // a drag moves on
+  ASSERT_EQ(live.forces().size(), 1u);
+  EXPECT_EQ(live.forces()[0].force, Vec3(0, 0, 0.7));
+  EXPECT_EQ(live.forces()[0].anchor, Vec3(0, 0, 3));
+  EXPECT_EQ(live.simulation().network().masses.external_force.at(399), Vec3(0, 0, 0.7));
+  EXPECT_EQ(live.apply(ReleaseForce{399}), "");
+  EXPECT_EQ(live.apply(ReleaseForce{398}), "");  // not pulled: nothing to do, not an error
+  EXPECT_TRUE(live.forces().empty());
+  EXPECT_EQ(live.simulation().network().masses.external_force.at(399), Vec3::Zero());
+}
+
+// A linguistic input ramps the weights to the rule base's material for the new
+// inputs; the user's viscosity survives it.
+TEST(LiveScene, InputChangeRampsToTheDerivedMaterialKeepingTheUsersViscosity) {
+  const Scene scene = test::asset_scene("hanging_fuzzy");
+  LiveScene live(scene);
+  EXPECT_EQ(live.apply(SetParameter{"viscosity", 0.3}), "");
+  EXPECT_EQ(live.apply(SetParameter{"input.mass", 0.9}), "");
+  EXPECT_TRUE(live.simulation().ramping());
+  for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
+    live.simulation().advance(0.01);  // the ramp takes 64 accepted steps
+  ASSERT_FALSE(live.simulation().ramping());
+
+  std::map<std::string, double> inputs = scene.fuzzy_material->inputs;
+  inputs["mass"] = 0.9;
+  Material expected = FuzzyMaterial::load(scene.fuzzy_material->rules_path).derive(inputs).material;
+  expected.viscosity = 0.3;
+  Scene target_scene = scene;
+  target_scene.material = expected;
+  const ClothNetwork target = target_scene.build_network();
+  const ClothNetwork& net = live.simulation().network();
+  EXPECT_EQ(net.springs.stiffness, target.springs.stiffness);
+  EXPECT_EQ(net.masses.inverse_mass, target.masses.inverse_mass);
+  EXPECT_TRUE(all_equal(net.springs.damping, 0.3));
+
+  SimulationStatus s;
+  live.describe(s);
+  const auto mass = std::find_if(s.material_inputs.begin(), s.material_inputs.end(),
+                                 [](const auto& p) { return p.first == "mass"; });
+  ASSERT_NE(mass, s.material_inputs.end());
+  EXPECT_EQ(mass->second, 0.9);
+  EXPECT_TRUE(contains(live.apply(SetParameter{"input.mass", 7}), "input.mass"));
+}
+
+TEST(LiveScene, WindChangesOnlyInWindScenes) {
+  LiveScene live(test::asset_scene("flag"));
+  SimulationStatus before;
+  live.describe(before);
+  ASSERT_TRUE(before.wind.has_value());
+  EXPECT_EQ(*before.wind, Vec3(6, 0, 0.8));
+  NodeVectors f0(live.simulation().network().node_count());
+  live.simulation().network().net_forces(live.simulation().state(), f0);
+
+  EXPECT_EQ(live.apply(SetParameter{"wind.x", -20}), "");
+  EXPECT_TRUE(contains(live.apply(SetParameter{"wind.z", 80}), "[-50, 50] m/s"));
+  SimulationStatus after;
+  live.describe(after);
+  EXPECT_EQ(*after.wind, Vec3(-20, 0, 0.8));
+  NodeVectors f1(f0.size());
+  live.simulation().network().net_forces(live.simulation().state(), f1);
+  double sum0 = 0, sum1 = 0;
+  for (std::size_t i = 0; i < f0.size(); ++i) {
+    sum0 += f0.x[i];
+    sum1 += f1.x[i];
+  }
+  EXPECT_GT(sum0, 0);  // downwind along +x before, along -x after
+  EXPECT_LT(sum1, 0);
+}
+
+TEST(LiveScene, ResetRestoresTheScenesStateAndParameters) {
+  const Scene scene = test::asset_scene("hanging");
+  LiveScene live(scene, true);
+  const long generation = live.generation();
+  live.apply(SetParameter{"viscosity", 4});
+  live.apply(SetParameter{"dt", 5e-4});
+  live.apply(SetPinned{0, false});
+  live.apply(ApplyForce{10, Vec3(1, 0, 0), Vec3::Zero()});
+  live.simulation().advance(0.05);
+  EXPECT_EQ(live.apply(Reset{}), "");
+  EXPECT_GT(live.generation(), generation);
+  EXPECT_TRUE(live.paused());  // pausing is the user's, not the scene's
+  const Simulation fresh = scene.make_simulation();
+  EXPECT_EQ(test::state_hash(live.simulation().state()), test::state_hash(fresh.state()));
+  EXPECT_EQ(live.simulation().time(), 0);
+  EXPECT_EQ(live.simulation().settings().dt, 1e-3);
+  EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 0.05));
+  EXPECT_TRUE(live.simulation().network().masses.pinned(0));
+  EXPECT_TRUE(live.forces().empty());
+}
+
+TEST(LiveScene, PauseAndSingleStep) {
+  LiveScene live(test::asset_scene("hanging"));
+  EXPECT_TRUE(contains(live.apply(SingleStep{}), "only while paused"));
+  EXPECT_EQ(live.simulation().time(), 0);
+  EXPECT_EQ(live.apply(SetPaused{true}), "");
+  EXPECT_EQ(live.apply(SingleStep{}), "");
+  EXPECT_EQ(live.simulation().time(), 1e-3);
+  EXPECT_EQ(live.simulation().steps(), 1);
+}
+
+TEST(LiveScene, ABrokenSceneOrRuleBaseLeavesTheRunAsItWas) {
+  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/live_scene_test";
+  std::filesystem::create_directories(dir);
+  const std::string broken = dir + "/broken.json";
+  std::ofstream(broken) << "{ \"name\": \"broken\", \"cloth\": { \"grid\": 3 } }";
+
+  LiveScene live(test::asset_scene("hanging_fuzzy"));
+  live.apply(SetParameter{"viscosity", 0.2});
+  live.simulation().advance(0.02);
+  const std::uint64_t before = test::state_hash(live.simulation().state());
+  const long generation = live.generation();
+
+  const std::string missing = live.apply(LoadScene{dir + "/missing.json"});
+  EXPECT_TRUE(contains(missing, "missing.json")) << missing;
+  const std::string bad = live.apply(LoadScene{broken});
+  EXPECT_TRUE(contains(bad, "broken.json")) << bad;
+  const std::string rules = live.apply(LoadRules{dir + "/missing.fcl"});
+  EXPECT_TRUE(contains(rules, "missing.fcl")) << rules;
+
+  EXPECT_EQ(live.generation(), generation);
+  EXPECT_EQ(live.scene().name, "hanging_fuzzy");
+  EXPECT_EQ(test::state_hash(live.simulation().state()), before);
+  EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 0.2));
+
+  EXPECT_EQ(live.apply(LoadScene{assets_directory() + "/scenes/flag.json"}), "");
+  EXPECT_EQ(live.scene().name, "flag");
+  EXPECT_GT(live.generation(), generation);
+  EXPECT_TRUE(contains(live.apply(LoadRules{assets_directory() + "/materials/cloth.fcl"}),
+                       "only a scene whose material is a rule base"));
+}
+
+TEST(LiveScene, NewRulesReplaceTheRuleBase) {
+  LiveScene live(test::asset_scene("hanging_fuzzy"));
+  const std::string path = assets_directory() + "/materials/cloth.fcl";
+  EXPECT_EQ(live.apply(LoadRules{path}), "");
+  EXPECT_EQ(live.scene().fuzzy_material->rules_path, path);
+  EXPECT_NE(find_range(live.ranges(), "input.elasticity"), nullptr);
+}
+
+}  // namespace
+}  // namespace neurocloth

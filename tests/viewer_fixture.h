@@ -1,0 +1,114 @@
+#pragma once
+// Runs the `neurocloth` window as a user would, under its own Xvfb server
+// (xvfb-run -a picks a free display), with a script and a report: real
+// processes, real files, exit codes. A run that hangs is killed by `timeout`.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace neurocloth::viewer_test {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int code = -1;  // -1: did not exit normally; 124: killed by the timeout
+  std::string out, err;
+};
+
+inline std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+inline std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline bool have_xvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+// Each test gets its own folder, which is also the working directory of the run.
+class Viewer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(NEUROCLOTH_TEST_TMP) / "viewer_test" /
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary | std::ios::trunc) << text;
+    return path(name).string();
+  }
+  std::string write_script(const std::string& name, const json& events) const {
+    return write(name, json{{"events", events}}.dump(1));
+  }
+
+  // `display`: under a fresh 1280x720 Xvfb; otherwise with no display at all.
+  // Two xvfb-run -a starting at once may pick the same display number and one
+  // then fails to start its server: that run is retried, it says nothing of ours.
+  Outcome run(const std::vector<std::string>& args, bool display = true,
+              int timeout_seconds = 40) const {
+    Outcome r = run_once(args, display, timeout_seconds);
+    for (int retry = 0; retry < 3 && display && r.err.find("xvfb-run: error") != std::string::npos;
+         ++retry)
+      r = run_once(args, display, timeout_seconds);
+    return r;
+  }
+
+  Outcome run_once(const std::vector<std::string>& args, bool display, int timeout_seconds) const {
+    std::string cmd = "cd " + quote(dir_.string()) + " && ";
+    if (display)
+      cmd += "xvfb-run -a -s '-screen 0 1280x720x24' ";
+    else
+      cmd += "env -u DISPLAY -u WAYLAND_DISPLAY ";
+    cmd += "timeout -k 5 " + std::to_string(timeout_seconds) + " " + quote(NEUROCLOTH_VIEWER);
+    for (const auto& a : args)
+      cmd += " " + quote(a);
+    cmd += " >" + quote(path("stdout.txt").string()) + " 2>" + quote(path("stderr.txt").string());
+    const int status = std::system(cmd.c_str());
+    Outcome r;
+    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
+    r.out = read_text(path("stdout.txt"));
+    r.err = read_text(path("stderr.txt"));
+    return r;
+  }
+
+  // Runs `scene` with `events` and returns the report (failing the test on a bad exit).
+  json session(const std::string& scene, const json& events,
+               const std::vector<std::string>& extra = {}, const std::string& name = "run") {
+    const std::string script = write_script(name + "_script.json", events);
+    const std::string report = path(name + "_report.json").string();
+    std::vector<std::string> args = {scene, "--script", script, "--report", report};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.code, 0) << "stderr: " << r.err;
+    std::ifstream in(report);
+    if (!in) {
+      ADD_FAILURE() << "no report at " << report;
+      return json::object();
+    }
+    return json::parse(in);
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace neurocloth::viewer_test
