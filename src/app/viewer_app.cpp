@@ -49,10 +49,14 @@ double ViewerApp::node_mass(int node) {
   return scene_info_.node_mass(node, values_.inputs);
 }
 
+double ViewerApp::seconds_since_start() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
 int ViewerApp::run() {
-  const Clock::time_point start = Clock::now();
+  start_ = Clock::now();
   while (!quit_ && !window_.close_requested() && !handler_.quit_requested()) {
-    frame(std::chrono::duration<double>(Clock::now() - start).count());
+    frame(seconds_since_start());
     if (player_ && player_->done()) quit_ = true;
   }
   return finish();
@@ -79,6 +83,14 @@ void ViewerApp::frame(double elapsed) {
   draw(status, *snapshot);
   if (last_drawn_ >= 0) stats_.frame(elapsed, elapsed - last_drawn_);
   last_drawn_ = elapsed;
+  pace(elapsed);
+}
+
+// Sleeps out the rest of a frame under the fps cap: the core is the simulation's.
+void ViewerApp::pace(double frame_start) {
+  if (options_.max_fps <= 0) return;
+  const double left = frame_start + 1 / options_.max_fps - seconds_since_start();
+  if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
 }
 
 // Keeps the UI's copy of the scene and its values in step with what runs.

@@ -36,6 +36,8 @@ class ViewerApp : private ScriptPlayer::Target {
 
  private:
   void frame(double elapsed);
+  void pace(double frame_start);
+  double seconds_since_start() const;
   void follow(const SimulationStatus& status, const FrameSnapshot& snapshot);
   void carry_out_requests(const FrameSnapshot& snapshot);
   void draw(const SimulationStatus& status, const FrameSnapshot& snapshot);
@@ -78,7 +80,8 @@ class ViewerApp : private ScriptPlayer::Target {
   InputHandler handler_;
   std::optional<ScriptPlayer> player_;
   bool quit_ = false;
-  double elapsed_ = 0;  // wall s since the first frame, at this frame
+  std::chrono::steady_clock::time_point start_;  // the first frame
+  double elapsed_ = 0;                           // wall s since the first frame, at this frame
   double last_drawn_ = -1;
   std::string reported_ui_error_, reported_sim_error_;
 };

@@ -17,7 +17,9 @@ std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& o)
   app.add_option("--width", o.width, "Window width, px")->check(CLI::Range(64, 16384));
   app.add_option("--height", o.height, "Window height, px")->check(CLI::Range(64, 16384));
   app.add_flag("--paused", o.paused, "Start paused");
-  app.add_flag("!--no-vsync", o.vsync, "Draw as fast as possible (for measuring frame rates)");
+  app.add_flag("!--no-vsync", o.vsync, "Do not wait for the display's refresh when swapping");
+  app.add_option("--max-fps", o.max_fps, "Frames per second at most; 0: as many as it can draw")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--sim-only", o.sim_only,
                  "Run the simulation without a window for SECONDS (speed reference)")
       ->check(CLI::PositiveNumber);

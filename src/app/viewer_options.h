@@ -19,7 +19,11 @@ struct ViewerOptions {
   std::optional<std::string> camera;  // "yaw,pitch,distance[,tx,ty,tz]"
   int width = 1280, height = 720;     // window, px
   bool paused = false;                // start paused
-  bool vsync = true;                  // off: draw as fast as it can (for measuring)
+  bool vsync = true;                  // off: do not wait for the display's refresh
+  // Frames per second at most (0: no cap). Where swapping does not wait for a
+  // refresh (Xvfb, some drivers) an uncapped window would take a whole core from
+  // the simulation to draw frames no one can see.
+  double max_fps = 60;
   // Run the simulation thread alone, without a window, for this many wall
   // seconds (for comparing its speed with and without the window).
   std::optional<double> sim_only;
