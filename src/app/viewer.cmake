@@ -38,7 +38,7 @@ set_source_files_properties(${_imgui_backend_sources}
 
 add_executable(neurocloth viewer_main.cpp viewer_options.cpp viewer_window.cpp viewer_app.cpp
   viewer_input.cpp viewer_script.cpp viewer_script_player.cpp viewer_report.cpp
-  viewer_frame_stats.cpp viewer_screenshot.cpp viewer_sim_only.cpp)
+  viewer_frame_stats.cpp viewer_screenshot.cpp viewer_sim_only.cpp viewer_priority.cpp)
 target_link_libraries(neurocloth PRIVATE neurocloth_ui neurocloth_render neurocloth_runtime
   neurocloth_imgui_backends glfw GLEW::GLEW OpenGL::GL imgui nlohmann_json::nlohmann_json
   CLI11::CLI11 neurocloth_flags)

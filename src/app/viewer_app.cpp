@@ -13,23 +13,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-SimulationThread::Options thread_options(const ViewerOptions& options) {
-  SimulationThread::Options o;
-  o.start_paused = options.paused;
-  return o;
-}
-
 std::string scene_key(const std::string& path, std::size_t nodes) {
   return path + "#" + std::to_string(nodes);
 }
 
 }  // namespace
 
-ViewerApp::ViewerApp(ViewerWindow& window, const Scene& scene, const ViewerOptions& options,
-                     const OrbitCamera& camera, std::optional<Script> script)
+ViewerApp::ViewerApp(ViewerWindow& window, SimulationThread& sim, const Scene& scene,
+                     const ViewerOptions& options, const OrbitCamera& camera,
+                     std::optional<Script> script)
     : window_(window),
       options_(options),
-      sim_(scene, thread_options(options)),
+      sim_(sim),
       scene_info_(scene),
       scene_info_key_(scene_key(scene.path, scene_info_.node_count())),
       camera_(camera),

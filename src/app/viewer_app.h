@@ -26,8 +26,9 @@ namespace neurocloth {
 class ViewerApp : private ScriptPlayer::Target {
  public:
   // Throws std::runtime_error when the renderer cannot start (shaders).
-  ViewerApp(ViewerWindow& window, const Scene& scene, const ViewerOptions& options,
-            const OrbitCamera& camera, std::optional<Script> script);
+  // `scene` is what `sim` runs.
+  ViewerApp(ViewerWindow& window, SimulationThread& sim, const Scene& scene,
+            const ViewerOptions& options, const OrbitCamera& camera, std::optional<Script> script);
   ~ViewerApp() override;
 
   // Runs until the window closes, Esc, or the script ends; writes the report.
@@ -65,7 +66,7 @@ class ViewerApp : private ScriptPlayer::Target {
 
   ViewerWindow& window_;
   ViewerOptions options_;
-  SimulationThread sim_;
+  SimulationThread& sim_;
   SceneInfo scene_info_;
   std::string scene_info_key_;  // path and node count the SceneInfo was made for
   UiValues values_;

@@ -8,8 +8,10 @@
 #include "input_error.h"
 #include "orbit_camera.h"
 #include "scene.h"
+#include "simulation_thread.h"
 #include "viewer_app.h"
 #include "viewer_options.h"
+#include "viewer_priority.h"
 #include "viewer_script.h"
 #include "viewer_sim_only.h"
 #include "viewer_window.h"
@@ -36,13 +38,20 @@ int run(const ViewerOptions& options) {
   if (options.camera) camera = parse_camera(*options.camera);
   if (options.sim_only) return run_sim_only(scene, options);
 
-  std::optional<ViewerWindow> window;
   try {
-    window.emplace(options.width, options.height, "neurocloth - " + scene.name, options.vsync);
+    ViewerWindow::connect();
   } catch (const NoDisplay& e) {
     return no_display(e.what(), options.scene);
   }
-  ViewerApp app(*window, scene, options, camera, std::move(script));
+  // The simulation's thread first, then this one steps back: the window and the
+  // threads the GL driver starts for it (llvmpipe's, without a GPU) then never
+  // take a core the simulation wants.
+  SimulationThread::Options run;
+  run.start_paused = options.paused;
+  SimulationThread sim(scene, run);
+  yield_to_simulation();
+  ViewerWindow window(options.width, options.height, "neurocloth - " + scene.name, options.vsync);
+  ViewerApp app(window, sim, scene, options, camera, std::move(script));
   return app.run();
 }
 

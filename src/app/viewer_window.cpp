@@ -23,9 +23,13 @@ void remember_error(int /*code*/, const char* description) {
 
 }  // namespace
 
-ViewerWindow::ViewerWindow(int width, int height, const std::string& title, bool vsync) {
+void ViewerWindow::connect() {
   glfwSetErrorCallback(remember_error);
-  if (!glfwInit()) throw NoDisplay(g_last_glfw_error);
+  if (!glfwInit()) throw NoDisplay(g_last_glfw_error);  // a second call returns at once
+}
+
+ViewerWindow::ViewerWindow(int width, int height, const std::string& title, bool vsync) {
+  connect();
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -19,6 +19,10 @@ class NoDisplay : public std::runtime_error {
 
 class ViewerWindow {
  public:
+  // Reaches the window system (GLFW's init) without opening anything yet;
+  // throws NoDisplay naming why not. The constructor does it too.
+  static void connect();
+
   // Throws NoDisplay, or std::runtime_error when the context cannot be made.
   // `vsync`: wait for the display's refresh when swapping (off: as fast as it can draw).
   ViewerWindow(int width, int height, const std::string& title, bool vsync = true);

@@ -13,9 +13,10 @@
 // no X display glvnd has no vendor to ask and answers nothing, so glewInit
 // fails with "Missing GL version". This definition in the executable takes
 // precedence over libGLX's and hands GL names to OSMesa instead. GLX names get
-// nothing: there is no GLX here, and GLEW then reports
-// GLEW_ERROR_NO_GLX_DISPLAY after loading the GL functions (gl_loader.cpp
-// accepts that). Only programs that link this library's OSMesa part get it.
+// nothing: there is no GLX here, and after loading the GL functions GLEW
+// reports a GLX error (GLEW_ERROR_GLX_VERSION_11_ONLY with Mesa 22.3, or
+// GLEW_ERROR_NO_GLX_DISPLAY), which gl_loader.cpp accepts. Only programs that
+// link neurocloth_osmesa get this definition; the window keeps glvnd's.
 extern "C" __attribute__((visibility("default"))) OSMESAproc glXGetProcAddressARB(
     const GLubyte* name) {
   const char* n = reinterpret_cast<const char*>(name);

@@ -8,6 +8,7 @@
 
 namespace neurocloth {
 
+// One at a time per thread: the destructor leaves no context current.
 class OsmesaContext {
  public:
   // Creates the context with a width x height RGBA colour buffer and a depth
