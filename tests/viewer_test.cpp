@@ -80,7 +80,7 @@ TEST_F(Viewer, OpensTheDefaultSceneAndAScriptedRunExitsZero) {
   ASSERT_EQ(r.code, 0) << r.err;
   const json report = json::parse(read_text(path("report.json")));
   EXPECT_EQ(report["status"]["scene_name"], "table_drape");
-  EXPECT_GT(report["frames"]["drawn"].get<long>(), 2);
+  EXPECT_GE(report["frames"]["drawn"].get<long>(), 2);
   EXPECT_GT(report["status"]["time"].get<double>(), 0.2) << "the simulation ran meanwhile";
   EXPECT_TRUE(report["errors"].empty()) << report["errors"].dump();
 }

@@ -5,10 +5,19 @@
 namespace neurocloth {
 
 void ScriptPlayer::advance(double elapsed, Target& target) {
-  while (next_ < script_.events.size() && script_.events[next_].t <= elapsed) {
-    const ScriptEvent& e = script_.events[next_++];
-    if (moving_) follow_move(e.t, target);  // where the cursor is when this happens
-    dispatch(e, target);
+  // One time stamp per frame: events written for different moments never share
+  // a frame, even when a slow frame (a loaded machine, a sanitizer build) lets
+  // several come due at once. The window draws and the simulation runs between
+  // them, as they would between a person's actions, so "probe, later probe"
+  // always sees time pass. Events with the same time stay together, in order.
+  const auto& events = script_.events;
+  if (next_ < events.size() && events[next_].t <= elapsed) {
+    const double t = events[next_].t;
+    while (next_ < events.size() && events[next_].t == t) {
+      const ScriptEvent& e = events[next_++];
+      if (moving_) follow_move(e.t, target);  // where the cursor is when this happens
+      dispatch(e, target);
+    }
   }
   if (moving_) follow_move(elapsed, target);
 }

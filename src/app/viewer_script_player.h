@@ -1,8 +1,9 @@
 #pragma once
-// Replays a Script in wall time: each frame, every event that has come due is
-// carried out in order through a Target (the window, which hands input events
-// to the same InputHandler real input goes to). A move with a duration is
-// spread over the frames it spans, so a scripted drag is a drag.
+// Replays a Script in wall time: each frame, the earliest events that have come
+// due (all those sharing one time stamp) are carried out in order through a
+// Target (the window, which hands input events to the same InputHandler real
+// input goes to). A move with a duration is spread over the frames it spans,
+// so a scripted drag is a drag.
 #include "viewer_script.h"
 
 namespace neurocloth {
@@ -27,7 +28,8 @@ class ScriptPlayer {
 
   explicit ScriptPlayer(Script script) : script_(std::move(script)) {}
 
-  // Carries out everything due by `elapsed` seconds since the first frame.
+  // Carries out the earliest time stamp's events if due by `elapsed` seconds
+  // since the first frame; later ones wait for the next frame.
   void advance(double elapsed, Target& target);
   // Every event has been carried out (the window then closes).
   bool done() const { return next_ >= script_.events.size() && !moving_; }
