@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "accuracy_choice.h"
 #include "asset_paths.h"
 #include "input_error.h"
 #include "scene.h"
+#include "tradeoff/accuracy_choice.h"
 
 namespace neurocloth {
 namespace {

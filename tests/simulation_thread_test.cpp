@@ -75,7 +75,9 @@ TEST(SimulationThread, StressManyCommandsFromTwoThreadsNoneLost) {
           !all_finite(*f))
         ++reader_problems;
       serial = f ? f->serial : serial;
-      if (f && f->time > 0.01) stepped = true;
+      // Any step at all: with ~80 resets and pauses in the storm, and a slow
+      // sanitizer build on a loaded machine, time may never get far between resets.
+      if (f && f->time > 0) stepped = true;
       const SimulationStatus s = sim.status();
       if (s.commands_applied < applied) ++reader_problems;
       applied = s.commands_applied;

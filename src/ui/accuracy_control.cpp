@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "accuracy_choice.h"
-#include "pareto_front.h"
-#include "trade_csv.h"
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/pareto_front.h"
+#include "tradeoff/trade_csv.h"
 
 namespace neurocloth {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "sim_command.h"
-#include "trade_table.h"
+#include "tradeoff/trade_table.h"
 
 namespace neurocloth {
 
