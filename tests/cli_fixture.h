@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // The exit codes documented in src/app/commands.h.
-constexpr int kOk = 0, kInputError = 1, kUsage = 2, kDiverged = 3;
+constexpr int kOk = 0, kInputError = 1, kUsage = 2, kDiverged = 3, kStoppedEarly = 5;
 
 struct Outcome {
   int code = -1;  // -1: did not exit normally; 124: killed by the timeout

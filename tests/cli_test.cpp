@@ -106,6 +106,24 @@ TEST_F(Cli, DivergedRunExitsThreeWithTheLastGoodState) {
   expect_all_finite(doc, "result");
 }
 
+// 1e7 N/m on 1e-5 kg nodes: the adaptive step's cap is ~2e-7 s, so 0.5 s would
+// take millions of steps. The budget stops it; the command says so and exits 5.
+TEST_F(Cli, ARunTheStepBudgetStopsSaysSoAndExitsFive) {
+  const std::string scene =
+      write("stiff.json", with(with(read_text(scene_asset("hanging")),
+                                    R"("spring_constant": 200.0)", R"("spring_constant": 1e7)"),
+                               R"("node_mass": 0.01)", R"("node_mass": 1e-5)"));
+  const Outcome r = run(
+      {"simulate", scene, "--adaptive", "--dt", "0.1", "--seconds", "0.5", "--out", result_path()});
+  ASSERT_EQ(r.code, kStoppedEarly) << r.out << r.err;
+  EXPECT_NE(r.out.find("stopped early"), std::string::npos) << r.out;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("status"), "ok");
+  EXPECT_EQ(doc.at("step_budget_exhausted"), true);
+  EXPECT_LT(doc.at("time").get<double>(), 0.5);
+  expect_all_finite(doc, "result");
+}
+
 TEST_F(Cli, AdaptiveWithFixedStepIsAUsageError) {
   const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--adaptive",
                          "--fixed-step", "--out", result_path()});

@@ -1,5 +1,5 @@
 // neurocloth-cli: batch access to the simulation core (simulate, relax, bench,
-// material) and headless snapshots (snapshot).
+// material, tradeoff) and headless snapshots (snapshot).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -27,6 +27,35 @@ int main(int argc, char** argv) {
   auto* fixed = simulate->add_flag("--fixed-step", sim.fixed_step, "Fixed time step");
   adaptive->excludes(fixed);
   simulate->add_option("--out", sim.out, "Where to write RESULT.json")->required();
+  auto* accuracy = simulate->add_option(
+      "--accuracy", sim.accuracy,
+      "Pick the cheapest measured setting keeping the max position error within this fraction "
+      "of the cloth's size (0.01 = 1%)");
+  accuracy->excludes("--integrator")->excludes("--dt")->excludes(adaptive)->excludes(fixed);
+  simulate
+      ->add_option("--trade", sim.trade,
+                   "The measured trade (tradeoff's CSV) --accuracy picks from; default "
+                   "assets/tradeoff/<scene>.csv, else measured first")
+      ->needs(accuracy);
+
+  TradeoffOptions trade;
+  auto* tradeoff = app.add_subcommand(
+      "tradeoff", "Measure speed against accuracy for every integrator; write CSV, chart, summary");
+  tradeoff->add_option("scene", trade.scene, "Scene file (JSON)")->required();
+  tradeoff->add_option("--seconds", trade.seconds, "Simulated seconds per run (default 2)");
+  tradeoff->add_option("--out", trade.out, "REPORT: writes REPORT.csv, REPORT.png and REPORT.md")
+      ->required();
+  tradeoff->add_option("--samples", trade.samples,
+                       "Times (evenly spaced) at which positions are compared (default 8)");
+  tradeoff->add_option("--reference-budget", trade.reference_budget,
+                       "Wall seconds for halving the RK4 reference's step (default 20)");
+  tradeoff->add_option("--method-budget", trade.method_budget,
+                       "Wall seconds for each method's sweep (default 8)");
+  tradeoff->add_option("--levels", trade.levels, "Settings per method at most (default 7)");
+  tradeoff
+      ->add_option("--methods", trade.methods,
+                   "Only these (network, explicit_euler, verlet, rk4, implicit_euler, adaptive)")
+      ->delimiter(',');
 
   RelaxOptions rel;
   auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");
@@ -85,6 +114,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*simulate) return run_simulate(sim);
+    if (*tradeoff) return run_tradeoff(trade);
     if (*relax) return run_relax(rel);
     if (*bench_cmd) return run_bench(bench);
     if (*material) return run_material(mat);

@@ -1,7 +1,8 @@
 #pragma once
 // The subcommands of neurocloth-cli. Each returns the process exit code:
 // 0 ok, 3 diverged (result still written), 4 relax did not converge (result
-// written), 1 bad input (nothing written).
+// written), 5 simulate stopped early at its step budget (result written), 1 bad
+// input (nothing written).
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,9 @@ inline constexpr int kExitInputError = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitDiverged = 3;
 inline constexpr int kExitNotConverged = 4;
+// simulate: the step budget ran out before --seconds (the result is healthy, at
+// an earlier time; docs/stability.md).
+inline constexpr int kExitStoppedEarly = 5;
 
 struct SimulateOptions {
   std::string scene;
@@ -24,8 +28,36 @@ struct SimulateOptions {
   bool adaptive = false;
   bool fixed_step = false;
   std::string out;
+  // --accuracy E: the cheapest setting the measured trade says keeps the max position
+  // error within E of the cloth's size; from --trade FILE.csv, else the committed
+  // assets/tradeoff/<scene stem>.csv, else measured first (tradeoff_command.cpp).
+  std::optional<double> accuracy;
+  std::optional<std::string> trade;
 };
 int run_simulate(const SimulateOptions& options);
+
+// Measures the speed-against-accuracy trade of a scene and writes REPORT.csv,
+// REPORT.png (the chart) and REPORT.md (the summary); docs/tradeoff.md.
+struct TradeoffOptions {
+  std::string scene;
+  double seconds = 2;
+  std::string out;  // REPORT: the three files' common path without extension
+  int samples = 8;
+  double reference_budget = 20;      // wall seconds for the RK4 reference's halvings
+  double method_budget = 8;          // wall seconds per method's sweep
+  int levels = 7;                    // settings per method at most
+  std::vector<std::string> methods;  // empty: all
+};
+int run_tradeoff(const TradeoffOptions& options);
+// The parts `simulate --accuracy` shares when it has to measure a trade itself:
+// the checked plan (InputError naming the option) and the measurement, which
+// prints its progress on stdout.
+struct Scene;
+struct TradeoffPlan;
+struct TradeTable;
+TradeoffPlan tradeoff_plan(const TradeoffOptions& options);
+TradeTable measure_trade(const Scene& scene, const std::string& scene_file,
+                         const TradeoffPlan& plan);
 
 struct RelaxOptions {
   std::string scene;

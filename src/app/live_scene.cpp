@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "input_error.h"
+#include "stability.h"
 
 namespace neurocloth {
 
@@ -42,10 +43,27 @@ double typical(const std::vector<double>& v, double fallback) {
   return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 
+// What a cloth may cost per dt while someone watches: about 2e7 spring
+// updates (about 0.1 s of network steps), so that no advance() at the step's
+// floor holds the thread — and with it pause, reset and every command — for seconds.
+constexpr double kLiveSpringUpdatesPerDt = 2e7;
+
+// The scene's simulation as the thread runs it: a fixed step above the
+// stability bound is taken in substeps under it (a live change may make it
+// so: a smaller mass, a stiffer material, more viscosity, another
+// integrator), and the work per dt is bounded for the cloth's size.
+Simulation live_simulation(Scene scene) {
+  scene.solver.substep_above_cap = true;
+  const double springs = std::max<double>(1.0, static_cast<double>(scene.topology.springs.size()));
+  const long affordable = std::max(64L, static_cast<long>(kLiveSpringUpdatesPerDt / springs));
+  scene.solver.step_budget = std::min(scene.solver.step_budget, affordable);
+  return scene.make_simulation();
+}
+
 }  // namespace
 
 // Built in one piece so that a scene that fails to load or build replaces
-// nothing. The Simulation is constructed in place from make_simulation()'s
+// nothing. The Simulation is constructed in place from live_simulation()'s
 // result and never moved: it holds pointers into itself (front and back buffers).
 struct LiveScene::Run {
   Scene scene;
@@ -56,7 +74,7 @@ struct LiveScene::Run {
 
   explicit Run(Scene s)
       : scene(std::move(s)),
-        sim(scene.make_simulation()),
+        sim(live_simulation(scene)),
         rules(load_rules(scene)),
         ranges(parameter_ranges(scene, rules ? &*rules : nullptr)),
         geometry(make_geometry(scene)) {}
@@ -111,8 +129,8 @@ std::string LiveScene::apply(const SimCommand& command) {
   }
 }
 
-Material LiveScene::target_material() const {
-  Material m = run_->rules ? run_->rules->derive(inputs_).material : run_->scene.material;
+Material LiveScene::target_material(const std::map<std::string, double>& inputs) const {
+  Material m = run_->rules ? run_->rules->derive(inputs).material : run_->scene.material;
   if (viscosity_) m.viscosity = *viscosity_;
   if (friction_) m.friction = *friction_;
   return m;
@@ -161,8 +179,10 @@ void LiveScene::set_parameter(const std::string& name, double value) {
     (*wind_)[w] = value;
     sim.rebase_divergence_check();  // and for the old wind
   } else if (name.compare(0, 6, "input.") == 0) {
-    inputs_[name.substr(6)] = value;
-    sim.ramp_to_material(target_material());  // no jolt: the weights move over 64 steps
+    std::map<std::string, double> inputs = inputs_;
+    inputs[name.substr(6)] = value;
+    sim.ramp_to_material(target_material(inputs));  // no jolt: the weights move over 64 steps
+    inputs_ = std::move(inputs);                    // only once the ramp took it
   }
 }
 
@@ -181,6 +201,24 @@ std::string LiveScene::on(const SetIntegrator& c) {
 std::string LiveScene::on(const SetAdaptive& c) {
   SolverSettings s = run_->sim.settings();
   s.adaptive = c.on;
+  run_->sim.set_solver_settings(s);
+  return {};
+}
+
+std::string LiveScene::on(const SetSolver& c) {
+  if (const ParameterRange* r = find_range(run_->ranges, "dt"))
+    if (!(c.dt >= r->min && c.dt <= r->max))  // NaN fails too
+      return "SetSolver: dt = " + number(c.dt) + " is outside its range " + describe_range(*r);
+  SolverSettings s = run_->sim.settings();  // keeps the live run's budget and substep guard
+  s.integrator = c.integrator;
+  s.dt = c.dt;
+  s.adaptive = c.adaptive;
+  s.adaptive_settings.safety = c.safety;
+  try {
+    validate(s);
+  } catch (const std::exception& e) {
+    return std::string("SetSolver: ") + e.what();
+  }
   run_->sim.set_solver_settings(s);
   return {};
 }
@@ -299,6 +337,41 @@ void LiveScene::describe(SimulationStatus& s) {
   s.wind = wind_;
   s.material_inputs.assign(inputs_.begin(), inputs_.end());
   s.modules = sim.module_reports();
+  s.substeps = sim.substeps();
+  s.step_budget_exhausted = sim.budget_exhausted();
+}
+
+std::string LiveScene::stability_notice() {
+  Simulation& sim = run_->sim;
+  const SolverSettings& s = sim.settings();
+  const char* integrator = to_string(s.integrator);
+  std::ostringstream os;
+  os.precision(3);
+  if (sim.budget_exhausted()) {
+    os << "step budget reached: " << integrator << " needs steps of at most " << sim.step_cap()
+       << " s on this cloth, more than " << s.step_budget << " per dt = " << s.dt
+       << " s; the simulation falls behind (a softer or heavier material, or implicit_euler, "
+          "needs fewer)";
+    return os.str();
+  }
+  const long substeps = sim.substeps();
+  const double step = s.adaptive ? sim.step_cap() : s.dt / static_cast<double>(substeps);
+  if (s.integrator == IntegratorKind::explicit_euler) {
+    const double limit = explicit_euler_step_bound(sim.network());
+    if (step > limit) {
+      os << "explicit_euler gains energy on this cloth at steps above " << limit
+         << " s (viscosity / stiffness) and takes " << step
+         << " s: expect a divergence (network, verlet, rk4 and implicit_euler do not)";
+      return os.str();
+    }
+  }
+  if (substeps > 1) {
+    os << "dt = " << s.dt << " s is above the stable step of " << integrator << " on this cloth ("
+       << sim.step_cap() << " s): each step runs as " << substeps
+       << " substeps (a smaller dt does the same; implicit_euler takes dt in one step)";
+    return os.str();
+  }
+  return {};
 }
 
 }  // namespace neurocloth

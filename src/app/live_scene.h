@@ -49,12 +49,20 @@ class LiveScene {
   // read from the network show what it really uses, mid-ramp included).
   void describe(SimulationStatus& status);
 
+  // One line when the step is not what the user asked for, else "": a fixed
+  // dt above the stable step taken in substeps (the guard: live runs set
+  // SolverSettings::substep_above_cap), a step budget that ran out in the last
+  // advance (time falls behind), or forward Euler above its damped limit
+  // (it gains energy: a divergence is coming). docs/stability.md.
+  std::string stability_notice();
+
  private:
   struct Run;  // a scene with everything built from it, replaced as a whole
 
   std::string on(const SetParameter& c);
   std::string on(const SetIntegrator& c);
   std::string on(const SetAdaptive& c);
+  std::string on(const SetSolver& c);
   std::string on(const ApplyForce& c);
   std::string on(const ReleaseForce& c);
   std::string on(const SetPinned& c);
@@ -67,9 +75,10 @@ class LiveScene {
   void set_parameter(const std::string& name, double value);
   // "" when `node` is a node of the cloth, else why not.
   std::string check_node(const char* command, int node) const;
-  // The material the network should settle on: the rule base's for the current
-  // inputs (or the scene's own), with the user's viscosity and friction.
-  Material target_material() const;
+  // The material the network should settle on: the rule base's for `inputs`
+  // (or the scene's own), with the user's viscosity and friction.
+  Material target_material(const std::map<std::string, double>& inputs) const;
+  Material target_material() const { return target_material(inputs_); }
   // Starts `run` with the scene's own parameters and no user changes.
   void start(std::unique_ptr<Run> run);
 

@@ -24,6 +24,15 @@ struct SetIntegrator {
 struct SetAdaptive {
   bool on;
 };
+// The solver as a whole, in one step (the Solver panel's accuracy slider picks
+// all of these together; applied one by one an intermediate mix could be
+// unstable). The run's own guards (step budget, substeps) are kept.
+struct SetSolver {
+  IntegratorKind integrator;
+  double dt;      // s: the fixed step, or the refresh interval when adaptive
+  bool adaptive;  // the paper's propagation (network integrator)
+  double safety;  // adaptive: t_c <= safety * stable step bound
+};
 // Pulls node `node` with `force` (N) towards `anchor` (drawn as a line) until released.
 struct ApplyForce {
   int node;
@@ -49,7 +58,8 @@ struct LoadRules {
   std::string path;  // an FCL rule base for the current linguistic material
 };
 
-using SimCommand = std::variant<SetParameter, SetIntegrator, SetAdaptive, ApplyForce, ReleaseForce,
-                                SetPinned, SetPaused, SingleStep, Reset, LoadScene, LoadRules>;
+using SimCommand =
+    std::variant<SetParameter, SetIntegrator, SetAdaptive, SetSolver, ApplyForce, ReleaseForce,
+                 SetPinned, SetPaused, SingleStep, Reset, LoadScene, LoadRules>;
 
 }  // namespace neurocloth

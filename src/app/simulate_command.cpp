@@ -1,19 +1,100 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "commands.h"
 #include "input_error.h"
 #include "result_json.h"
 #include "scene.h"
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/trade_csv.h"
+#include "tradeoff/tradeoff_sweep.h"
 
 namespace neurocloth {
+namespace {
+
+// What --accuracy picked, and from which trade: printed and put in RESULT.json.
+struct AccuracyPick {
+  double requested = 0;
+  std::string trade;  // the CSV it came from, or "measured now"
+  double trade_seconds = 0;
+  TradeRow row;
+};
+
+// The trade to pick from: --trade, else the committed one, else measured now.
+TradeTable find_trade(const SimulateOptions& o, const Scene& scene, std::string& source) {
+  if (o.trade) {
+    source = *o.trade;
+    return read_trade_csv(*o.trade);
+  }
+  const std::string committed = committed_trade_path(o.scene);
+  if (std::filesystem::exists(committed)) {
+    source = committed;
+    return read_trade_csv(committed);
+  }
+  TradeoffOptions options;
+  options.scene = o.scene;
+  if (o.seconds > 0) options.seconds = o.seconds;
+  const TradeoffPlan plan = tradeoff_plan(options);
+  std::printf(
+      "%s: no measured trade (looked for %s): measuring one over %g s first; keep it with\n"
+      "  neurocloth-cli tradeoff %s --seconds %g --out REPORT, then --trade REPORT.csv\n",
+      scene.name.c_str(), committed.c_str(), plan.seconds, o.scene.c_str(), plan.seconds);
+  std::fflush(stdout);
+  source = "measured now";
+  return measure_trade(scene, o.scene, plan);
+}
+
+AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
+  AccuracyPick pick;
+  pick.requested = *o.accuracy;
+  if (!(pick.requested > 0) || !std::isfinite(pick.requested))
+    throw InputError("command line", "--accuracy",
+                     "must be a finite number > 0 (a fraction of the cloth's size: 0.01 is 1%)");
+  const TradeTable trade = find_trade(o, scene, pick.trade);
+  if (trade.scene != scene.name)
+    throw InputError(pick.trade, "# scene",
+                     "measured for scene '" + trade.scene + "', not for '" + scene.name + "'");
+  const AccuracyChoice c =
+      choose_for_accuracy(trade, pick.trade, pick.requested, scene.solver, "--accuracy");
+  scene.solver = c.settings;
+  pick.row = c.row;
+  pick.trade_seconds = trade.seconds;
+  std::printf(
+      "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s wall "
+      "per simulated s)\n",
+      pick.requested, describe_setting(c.row).c_str(), pick.trade.c_str(), trade.seconds,
+      c.row.position_error_max, c.row.position_error_rms, c.row.wall_per_simulated_second);
+  if (o.seconds > trade.seconds)
+    std::printf("  note: this run is longer than the measured %g s; errors may grow beyond it\n",
+                trade.seconds);
+  return pick;
+}
+
+nlohmann::json accuracy_json(const AccuracyPick& p) {
+  return {{"requested", p.requested},
+          {"trade", p.trade},
+          {"trade_seconds", p.trade_seconds},
+          {"method", p.row.method},
+          {"parameter", p.row.parameter},
+          {"value", p.row.value},
+          {"dt", p.row.dt},
+          {"measured_position_error_max", p.row.position_error_max},
+          {"measured_position_error_rms", p.row.position_error_rms},
+          {"measured_wall_per_simulated_second", p.row.wall_per_simulated_second}};
+}
+
+}  // namespace
 
 int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
     throw InputError("command line", "--seconds", "must be a finite number >= 0");
   Scene scene = load_scene(o.scene);
+  std::optional<AccuracyPick> accuracy;
+  if (o.accuracy) accuracy = pick_for_accuracy(o, scene);
   if (o.integrator) {
     const auto kind = parse_integrator(*o.integrator);
     if (!kind)
@@ -36,7 +117,13 @@ int run_simulate(const SimulateOptions& o) {
   sim.check_now();  // the result is checked in full, whatever the cadence
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_json_atomically(o.out, simulation_result(sim, o.scene, wall));
+  nlohmann::json result = simulation_result(sim, o.scene, wall);
+  if (accuracy) result["accuracy"] = accuracy_json(*accuracy);
+  // A run the step budget stopped is healthy but short of what was asked:
+  // the result says so, and so do the message and the exit code.
+  const bool stopped_early = sim.status() == RunStatus::ok && sim.budget_exhausted();
+  result["step_budget_exhausted"] = stopped_early;
+  write_json_atomically(o.out, result);
 
   const Energy e = sim.energy();
   std::printf("%s: %s at t = %.4g s after %ld steps (%ld rejected), %s%s, %.3g s wall\n",
@@ -52,8 +139,14 @@ int run_simulate(const SimulateOptions& o) {
   if (sim.status() != RunStatus::ok)
     std::printf("  diverged: %s; kept the last good state (t = %.4g s)\n",
                 sim.divergence_reason().c_str(), sim.time());
+  if (stopped_early)
+    std::printf(
+        "  stopped early at t = %.4g s of %.4g s: the step budget (%ld trial steps per dt) ran "
+        "out; the stable step here is %.3g s (docs/stability.md)\n",
+        sim.time(), o.seconds, sim.settings().step_budget, sim.step_cap());
   std::printf("  wrote %s\n", o.out.c_str());
-  return sim.status() == RunStatus::ok ? kExitOk : kExitDiverged;
+  if (sim.status() != RunStatus::ok) return kExitDiverged;
+  return stopped_early ? kExitStoppedEarly : kExitOk;
 }
 
 }  // namespace neurocloth

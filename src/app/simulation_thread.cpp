@@ -67,6 +67,7 @@ struct SimulationThread::Impl {
   double energy_time = -1;  // simulated time of the last energy sample
   long applied = 0, refused = 0;
   std::string last_error;
+  std::string notice;  // LiveScene::stability_notice() at the last status refresh
   long generation = -1;
   bool stepping = false;
   double last_status = -1e300;  // wall time of the last status refresh
@@ -193,12 +194,14 @@ struct SimulationThread::Impl {
     }
   }
 
-  // The state as it is now, unless it cannot be drawn: then the divergence
-  // check runs at once (it rolls back to the last good state) and, if even
-  // that leaves something unfinite, the previous snapshot stays.
+  // The state as it is now, checked in full first (finite, energy within its
+  // budget: one energy evaluation per frame), so a cloth that began to explode
+  // since the last periodic check is rolled back to its last good state rather
+  // than drawn. If even that leaves something unfinite, the previous snapshot stays.
   void publish() {
     Simulation& sim = live.simulation();
     FrameSnapshot& f = snapshots.back();
+    sim.check_now();
     capture(sim, f);
     if (!finite_positions(f)) {
       sim.check_now();
@@ -229,6 +232,16 @@ struct SimulationThread::Impl {
     s->keeping_up = keeping_up(now);
     s->commands_applied = applied;
     s->commands_refused = refused;
+    // A stability notice is reported once in last_error when it appears (the
+    // viewer shows last_error), and taken back when the step is sane again.
+    s->stability_notice = live.stability_notice();
+    if (s->stability_notice != notice) {
+      if (!s->stability_notice.empty())
+        last_error = s->stability_notice;
+      else if (last_error == notice)
+        last_error.clear();
+      notice = s->stability_notice;
+    }
     s->last_error = last_error;
     if (s->time != energy_time) {  // one sample per refresh that moved time
       energy_time = s->time;

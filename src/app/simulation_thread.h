@@ -31,7 +31,12 @@ struct SimulationStatus {
   std::string divergence_reason;
   double time = 0;  // simulated s
   long steps = 0, rejected_steps = 0;
-  double step_cap = 0;          // current t_c cap (adaptive) or dt, s
+  double step_cap = 0;  // current t_c cap (adaptive) or dt, s
+  long substeps = 1;    // a fixed dt above the stable step runs as this many substeps
+  bool step_budget_exhausted = false;  // the last advance stopped at its step budget
+  // One line while the step is not what was asked (substeps, budget, forward
+  // Euler above its limit); also shown once in last_error when it appears.
+  std::string stability_notice;
   double steps_per_second = 0;  // accepted steps per wall second, recent
   double realtime_ratio = 1;    // simulated s per wall s, recent (1 = keeping up)
   bool keeping_up = true;

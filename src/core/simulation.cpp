@@ -2,11 +2,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "stability.h"
 
 namespace neurocloth {
+
+namespace {
+
+// Bad input is refused before anything changes, with the field it is in.
+[[noreturn]] void refuse(const std::string& field, std::size_t index, const char* rule,
+                         double value) {
+  std::ostringstream os;
+  os << field << "[" << index << "] must be " << rule << ", got " << value;
+  throw std::invalid_argument(os.str());
+}
+
+void check_state(const ClothState& s, const char* what) {
+  if (s.all_finite()) return;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (!s.position(i).allFinite() || !s.velocity(i).allFinite())
+      throw std::invalid_argument(std::string(what) + ": node " + std::to_string(i) +
+                                  " has a non-finite position or velocity");
+}
+
+// The weights a step divides by or multiplies with: finite, a positive inverse
+// mass, no negative stiffness or damping (either would pump energy in).
+void check_weights(const ClothNetwork& net) {
+  const SpringLayer& sp = net.springs;
+  for (std::size_t i = 0; i < sp.size(); ++i) {
+    if (!(sp.stiffness[i] >= 0 && std::isfinite(sp.stiffness[i])))
+      refuse("springs.stiffness", i, "finite and >= 0", sp.stiffness[i]);
+    if (!(sp.damping[i] >= 0 && std::isfinite(sp.damping[i])))
+      refuse("springs.damping", i, "finite and >= 0", sp.damping[i]);
+  }
+  const MassLayer& m = net.masses;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (!(m.inverse_mass[i] > 0 && std::isfinite(m.inverse_mass[i])))
+      refuse("masses.inverse_mass", i, "finite and > 0 (a node needs a mass)", m.inverse_mass[i]);
+  if (!net.gravity.allFinite()) refuse("gravity", 0, "finite", net.gravity.norm());
+}
+
+const SolverSettings& validated(const SolverSettings& s) {
+  validate(s);
+  return s;
+}
+
+}  // namespace
 
 const char* to_string(RunStatus s) {
   return s == RunStatus::ok ? "ok" : "diverged";
@@ -15,7 +59,7 @@ const char* to_string(RunStatus s) {
 Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
                        std::vector<std::unique_ptr<ConstraintModule>> constraints)
     : net_(std::move(network)),
-      settings_(settings),
+      settings_(validated(settings)),  // before the integrator is made from them
       integrator_(make_integrator(settings.integrator, net_)),
       constraints_(std::move(constraints)),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
@@ -27,7 +71,8 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       monitor_(net_, initial, settings.divergence) {
   if (initial.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
-  if (!(settings.dt > 0.0)) throw std::invalid_argument("dt must be > 0");
+  check_state(initial, "initial state");
+  check_weights(net_);
   for (std::size_t i = 0; i < net_.node_count(); ++i)
     if (net_.masses.free[i] != 0.0)
       force_scale_ = std::max(force_scale_, std::abs(net_.mass(i)) * net_.gravity.norm());
@@ -66,6 +111,10 @@ Simulation::Simulation(Simulation&& o) noexcept
       cap_(o.cap_),
       former_force_(o.former_force_),
       force_scale_(o.force_scale_),
+      bound_k_(std::move(o.bound_k_)),
+      bound_d_(std::move(o.bound_d_)),
+      budget_left_(o.budget_left_),
+      budget_exhausted_(o.budget_exhausted_),
       observer_(std::move(o.observer_)) {}
 
 ClothNetwork& Simulation::mutable_network() {
@@ -75,8 +124,14 @@ ClothNetwork& Simulation::mutable_network() {
   return net_;
 }
 
+// The stability bound does not depend on external forces: only the cached
+// forces are dropped.
 void Simulation::set_external_force(std::size_t node, const Vec3& f) {
-  mutable_network().masses.external_force.x[node] = f.x();
+  if (node >= net_.node_count()) throw std::out_of_range("set_external_force: no such node");
+  if (!f.allFinite()) throw std::invalid_argument("set_external_force: force must be finite");
+  front_forces_valid_ = false;
+  former_force_ = -1;
+  net_.masses.external_force.x[node] = f.x();
   net_.masses.external_force.y[node] = f.y();
   net_.masses.external_force.z[node] = f.z();
 }
@@ -84,6 +139,7 @@ void Simulation::set_external_force(std::size_t node, const Vec3& f) {
 void Simulation::set_state(const ClothState& s) {
   if (s.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
+  check_state(s, "set_state");
   *front_ = s;
   checkpoint_ = s;
   checkpoint_time_ = time_;
@@ -93,7 +149,7 @@ void Simulation::set_state(const ClothState& s) {
 }
 
 void Simulation::set_solver_settings(const SolverSettings& settings) {
-  if (!(settings.dt > 0.0)) throw std::invalid_argument("dt must be > 0");
+  validate(settings);  // before anything changes
   settings_ = settings;
   integrator_ = make_integrator(settings_.integrator, net_);
   start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());
@@ -115,6 +171,7 @@ void Simulation::rebase_divergence_check() {
 void Simulation::ramp_to_material(const Material& material, int steps) {
   ClothNetwork target = net_;
   target.apply_material(material);
+  check_weights(target);  // a bad material is refused; the ramp in progress goes on
   ramp_.start(net_, target, steps);
 }
 
@@ -129,27 +186,44 @@ bool Simulation::advance_ramp() {
 
 double Simulation::step_cap() {
   if (cap_ < 0) {
-    const double bound = stable_step_bound(net_, integrator_->stability_limit());
+    const double bound =
+        stable_step_bound(net_, integrator_->stability_limit(), bound_k_, bound_d_);
     cap_ = std::min(settings_.dt, settings_.adaptive_settings.safety * bound);
   }
   return cap_;
 }
 
+long Simulation::substeps() {
+  if (settings_.adaptive || !settings_.substep_above_cap) return 1;
+  const double n = std::ceil(settings_.dt / step_cap() * (1.0 - 1e-12));
+  return n >= static_cast<double>(std::numeric_limits<long>::max())
+             ? std::numeric_limits<long>::max()
+             : std::max(1L, static_cast<long>(n));
+}
+
 RunStatus Simulation::advance(double seconds) {
+  budget_exhausted_ = false;
   if (status_ != RunStatus::ok || !(seconds > 0.0)) return status_;
   const double t_end = time_ + seconds;
   const double dt = settings_.dt;
+  // step_budget per dt asked for, rounded up, plus one for a round-off remainder.
+  const double allowance =
+      static_cast<double>(settings_.step_budget) * (std::ceil(seconds / dt) + 1);
+  budget_left_ = allowance < 1e18 ? static_cast<long>(allowance) : 1000000000000000000L;
   while (status_ == RunStatus::ok && time_ < t_end) {
+    if (budget_left_ <= 0) {
+      budget_exhausted_ = true;
+      break;
+    }
     const double remaining = t_end - time_;
     const bool last = remaining <= dt * (1.0 + 1e-9);
     // A remainder within round-off of dt is dt: then advance(k dt) takes the same
     // steps, bit for bit, however it is split into calls.
     const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
-    if (settings_.adaptive)
-      adaptive_frame(last ? t_end : time_ + dt);
-    else
-      fixed_step(last && !whole ? remaining : dt);
-    if (last && status_ == RunStatus::ok) time_ = t_end;  // no round-off drift at the end
+    const bool done = settings_.adaptive ? adaptive_frame(last ? t_end : time_ + dt)
+                                         : fixed_frame(last && !whole ? remaining : dt);
+    if (!done && status_ == RunStatus::ok) budget_exhausted_ = true;
+    if (last && done && status_ == RunStatus::ok) time_ = t_end;  // no round-off drift at the end
   }
   // Between energy checks, at least never hand out a NaN: a cheap test every call.
   if (status_ == RunStatus::ok && steps_since_check_ > 0 && !front_->all_finite()) run_check();
@@ -203,8 +277,37 @@ void Simulation::after_accept(bool force_check) {
   if (force_check || steps_since_check_ >= settings_.divergence.check_interval) run_check();
 }
 
+bool Simulation::fixed_frame(double frame) {
+  if (!settings_.substep_above_cap) {  // the plain step: exactly the step asked for
+    --budget_left_;
+    fixed_step(frame);
+    return true;
+  }
+  // Guarded: equal substeps under the cap, recounted after each one because a
+  // ramp may lower the cap mid-frame. Time lands on start + frame exactly, as
+  // an unguarded step of the same frame would.
+  const double end = time_ + frame;
+  double left = frame;
+  while (status_ == RunStatus::ok) {
+    if (budget_left_ <= 0) return false;
+    --budget_left_;
+    advance_ramp();
+    const double n = std::ceil(left / step_cap() * (1.0 - 1e-12));
+    const double h = n > 1 ? left / n : left;
+    fixed_step_now(h);
+    if (n <= 1) break;
+    left -= h;
+  }
+  if (status_ == RunStatus::ok) time_ = end;
+  return true;
+}
+
 void Simulation::fixed_step(double h) {
   advance_ramp();
+  fixed_step_now(h);
+}
+
+void Simulation::fixed_step_now(double h) {
   begin_step();
   ensure_front_forces();
   // A fixed step is never rejected, so an integrator that can may write over
@@ -231,13 +334,15 @@ void Simulation::fixed_step(double h) {
 // The paper's Table 1, with a rollback of rejected trials (the back buffer is
 // simply not swapped in), a cap on t_c from the stability bound, a floor on t_c,
 // and a tolerance on "the force grows".
-void Simulation::adaptive_frame(double frame_end) {
+bool Simulation::adaptive_frame(double frame_end) {
   const AdaptiveSettings& A = settings_.adaptive_settings;
   double cap = step_cap();
   double floor = cap * A.min_step_fraction;
   double tc = cap;  // Table 1: t_c := t_delta, never above the cap
   bool accepted = true;
   while (status_ == RunStatus::ok && time_ < frame_end) {
+    if (budget_left_ <= 0) return false;
+    --budget_left_;
     if (accepted && advance_ramp()) {  // weights moved: a new cap, new forces
       cap = step_cap();
       floor = cap * A.min_step_fraction;
@@ -273,6 +378,7 @@ void Simulation::adaptive_frame(double frame_end) {
     if (observer_) observer_(ev);
     after_accept(!std::isfinite(m));
   }
+  return true;
 }
 
 RunStatus Simulation::check_now() {

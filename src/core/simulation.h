@@ -56,8 +56,13 @@ class Simulation {
   // Propagates `seconds` of simulated time (0 does nothing). Stops early, with
   // the last good state, when the run diverges. The full check (finite state,
   // energy within budget) runs every check_interval steps; the state returned
-  // is always finite.
+  // is always finite. Stops early too, still ok, when the step budget runs out
+  // (settings().step_budget trial steps per dt): then budget_exhausted().
   RunStatus advance(double seconds);
+  // True when the last advance() ended before the time it was asked for because
+  // it ran out of step budget (the state is finite and healthy, only behind;
+  // time() says how far it got). Cleared by the next advance().
+  bool budget_exhausted() const { return budget_exhausted_; }
   // Runs the full divergence check now (e.g. before writing a result).
   RunStatus check_now();
 
@@ -95,8 +100,13 @@ class Simulation {
   long cg_iterations() const { return cg_iterations_; }
   // Springs with no length (skipped by the force evaluation) at the last check.
   int degenerate_springs() const { return degenerate_; }
-  // The adaptive cap on t_c (safety * stability bound, at most dt).
+  // The adaptive cap on t_c (safety * stability bound, at most dt); with
+  // substep_above_cap, the largest fixed (sub)step too. Recomputed after any
+  // weight change (mutable_network, a ramp step, new solver settings).
   double step_cap();
+  // How many equal substeps one fixed step of dt takes now: ceil(dt / step_cap())
+  // with substep_above_cap, else 1 (also when adaptive or implicit).
+  long substeps();
   Energy energy() const { return net_.energy(*front_); }
 
   // The active modules (force modules first, then constraints in run order).
@@ -108,11 +118,16 @@ class Simulation {
   }
 
  private:
-  void fixed_step(double h);
+  // One fixed frame of h: a single step, or equal substeps under the cap when
+  // guarded. False when the step budget ran out before the frame's end.
+  bool fixed_frame(double h);
+  void fixed_step(double h);  // advances the ramp, then steps
+  void fixed_step_now(double h);
   // The modules' hooks around one integrator step from *front_ (at time_) over h.
   void begin_step();
   void constrain(const StepStart& before, ClothState& after, double h);
-  void adaptive_frame(double frame_end);
+  // False when the step budget ran out before frame_end.
+  bool adaptive_frame(double frame_end);
   void ensure_front_forces();
   // The step's result is in the back buffer (swap it in) or already in front.
   void accept(double h, bool result_in_back = true);
@@ -144,9 +159,12 @@ class Simulation {
   long steps_ = 0, checkpoint_steps_ = 0, rejected_ = 0;
   long force_evaluations_ = 0, cg_iterations_ = 0;
   int steps_since_check_ = 0;
-  double cap_ = -1;           // cached step cap; < 0 means stale
-  double former_force_ = -1;  // max |sum f| at the current state; < 0 means unknown
-  double force_scale_ = 0;    // largest node weight, for the absolute growth tolerance
+  double cap_ = -1;                        // cached step cap; < 0 means stale
+  double former_force_ = -1;               // max |sum f| at the current state; < 0 means unknown
+  double force_scale_ = 0;                 // largest node weight, for the absolute growth tolerance
+  std::vector<double> bound_k_, bound_d_;  // scratch of the stability bound
+  long budget_left_ = 0;                   // trial steps this advance() may still take
+  bool budget_exhausted_ = false;
   std::function<void(const StepEvent&)> observer_;
 };
 

@@ -1,5 +1,13 @@
 #pragma once
-// How a scene asks to be propagated. Defaults are documented in docs/scenes.md.
+// How a scene asks to be propagated. Defaults are documented in docs/scenes.md;
+// the step budget and the stable-substep guard in docs/stability.md.
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
 #include "integrator.h"
 
 namespace neurocloth {
@@ -25,6 +33,44 @@ struct SolverSettings {
   bool adaptive = false;
   AdaptiveSettings adaptive_settings;
   DivergenceSettings divergence;
+  // The most trial steps (accepted, rejected, substeps) one advance(T) may take
+  // per dt of T. Nothing else bounds the adaptive step's work: at its floor on a
+  // stiff, light cloth one refresh interval can need millions of steps. When the
+  // budget runs out, advance() stops early with a healthy state and says so
+  // (Simulation::budget_exhausted()); a plain fixed step never reaches it.
+  long step_budget = 10000;
+  // Fixed steps only: a dt above step_cap() (the explicit stability bound times
+  // `safety`) is taken as equal substeps under it instead of as one unstable
+  // step. Off by default: a batch run asked for that step and gets it (a
+  // divergence then says it was too large); the live simulation thread turns it
+  // on, so a change made while the cloth moves cannot make it explode.
+  bool substep_above_cap = false;
 };
+
+// Throws std::invalid_argument naming the first field out of its range
+// ("solver.dt must be a finite number > 0, got -1"); the same limits as a scene file.
+inline void validate(const SolverSettings& s) {
+  auto fail = [](const std::string& field, const std::string& rule, double value) {
+    std::ostringstream os;
+    os << "solver." << field << " must be " << rule << ", got " << value;
+    throw std::invalid_argument(os.str());
+  };
+  if (std::find(std::begin(kAllIntegrators), std::end(kAllIntegrators), s.integrator) ==
+      std::end(kAllIntegrators))
+    fail("integrator", "one of " + integrator_names(), static_cast<double>(s.integrator));
+  if (!(s.dt > 0 && std::isfinite(s.dt))) fail("dt", "a finite number > 0", s.dt);
+  const AdaptiveSettings& a = s.adaptive_settings;
+  if (!(a.safety > 0 && a.safety <= 1)) fail("safety", "in (0, 1]", a.safety);
+  if (!(a.growth_tolerance >= 0 && std::isfinite(a.growth_tolerance)))
+    fail("growth_tolerance", "a finite number >= 0", a.growth_tolerance);
+  if (!(a.min_step_fraction > 0 && a.min_step_fraction <= 1))
+    fail("min_step_fraction", "in (0, 1]", a.min_step_fraction);
+  const DivergenceSettings& d = s.divergence;
+  if (d.check_interval < 1) fail("check_interval", ">= 1", d.check_interval);
+  if (!(d.runaway_factor >= 1)) fail("runaway_factor", ">= 1", d.runaway_factor);
+  if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
+  if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);
+  if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
+}
 
 }  // namespace neurocloth

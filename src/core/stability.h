@@ -6,10 +6,26 @@
 // is stable when h^2 omega^2 + 2 h gamma < 4; with a general limit L on h*omega:
 //   h_i = L^2 / (gamma_i + sqrt(gamma_i^2 + L^2 omega_i^2))
 // The bound is the minimum over nodes (infinity when nothing constrains it).
+// docs/stability.md compares it with the critical steps measured on grids.
+#include <vector>
+
 #include "cloth_network.h"
 
 namespace neurocloth {
 
 double stable_step_bound(const ClothNetwork& net, double stability_limit);
+// The same with caller-owned scratch (resized to the node count), so a live
+// simulation that recomputes the bound after every weight change allocates nothing.
+double stable_step_bound(const ClothNetwork& net, double stability_limit,
+                         std::vector<double>& k_sum, std::vector<double>& d_sum);
+
+// Forward Euler is the exception: on an undamped oscillator it gains energy at
+// every step (|1 + i h omega| > 1), so no L makes it stable. With viscosity it
+// is stable while h < gamma / omega^2 for every mode, which for damping along
+// the springs is h < d_s / (k_s max_slope) (exact when every spring has the
+// same ratio), and h < 2 / gamma_i for the overdamped ones. This returns that
+// step: 0 when some stiff spring has no damping. Measured in docs/stability.md;
+// the adaptive cap does not use it (see there).
+double explicit_euler_step_bound(const ClothNetwork& net);
 
 }  // namespace neurocloth

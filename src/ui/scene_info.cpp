@@ -6,7 +6,9 @@ SceneInfo::SceneInfo(const Scene& scene)
     : name_(scene.name),
       path_(scene.path),
       ranges_(parameter_ranges(scene)),
-      material_(scene.material) {
+      material_(scene.material),
+      solver_(scene.solver),
+      trade_(load_accuracy_trade(scene.path)) {
   // Masses as the network has them (a rule base's node_mass is per reference
   // area, so nodes at the border carry less): built once per scene, not per drag.
   const ClothNetwork net = scene.build_network();

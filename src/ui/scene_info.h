@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "accuracy_control.h"
 #include "fuzzy_view.h"
 #include "scene.h"
 #include "simulation_thread.h"
@@ -31,6 +32,10 @@ class SceneInfo {
   // the simulation is ramping towards).
   double node_mass(int node, const std::vector<std::pair<std::string, double>>& inputs);
   const Material& material() const { return material_; }
+  // The scene's own solver settings and its measured speed/accuracy trade, for
+  // the accuracy slider.
+  const SolverSettings& solver() const { return solver_; }
+  const AccuracyTrade& trade() const { return trade_; }
 
   // Set for a linguistic material.
   std::optional<FuzzyView>& fuzzy() { return fuzzy_; }
@@ -41,6 +46,8 @@ class SceneInfo {
   std::vector<ParameterRange> ranges_;
   std::vector<double> node_mass_, mass_share_;
   Material material_;
+  SolverSettings solver_;
+  AccuracyTrade trade_;
   std::optional<FuzzyView> fuzzy_;
 };
 

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <vector>
 
+#include "input_error.h"
 #include "panels.h"
 #include "parameter_input.h"
 
@@ -29,12 +30,46 @@ void settings(PanelContext& ctx) {
   parameter_field(ctx, "friction", "friction");
 }
 
+// Instead of a step by hand: the cheapest measured setting within an accuracy.
+void accuracy(PanelContext& ctx) {
+  const AccuracyTrade& trade = ctx.scene.trade();
+  if (!trade.table) {
+    ImGui::TextDisabled("accuracy: %s", trade.note.c_str());
+    return;
+  }
+  UiValues& v = ctx.values;
+  float percent = 100 * v.accuracy;
+  const float lo = static_cast<float>(100 * trade.finest),
+              hi = static_cast<float>(100 * trade.loosest);
+  ImGui::SliderFloat("accuracy, % of size", &percent, lo, hi, "%.3g %%",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp |
+                         ImGuiSliderFlags_NoRoundToFormat);
+  v.accuracy = percent / 100;
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    try {
+      const AccuracyPick pick = pick_for_accuracy(trade, v.accuracy, ctx.scene.solver());
+      ctx.post(pick.command);
+      for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+        if (kAllIntegrators[i] == pick.command.integrator) v.integrator = static_cast<int>(i);
+      v.adaptive = pick.command.adaptive;
+      v.dt = pick.command.dt;
+      v.accuracy_pick = pick.description;
+    } catch (const InputError& e) {
+      ctx.messages.error = e.what();
+      v.accuracy_pick.clear();
+    }
+  }
+  if (!v.accuracy_pick.empty()) ImGui::TextWrapped("picked %s", v.accuracy_pick.c_str());
+}
+
 void progress(const SimulationStatus& s) {
   ImGui::Text("t = %.3f s, %ld steps (%ld rejected)", s.time, s.steps, s.rejected_steps);
   ImGui::Text("t_c = %.3g s, %.0f steps/s", s.step_cap, s.steps_per_second);
   if (!s.keeping_up)
     ImGui::TextColored(ImVec4(1, 0.7f, 0.2f, 1), "not keeping up: %.2fx real time",
                        s.realtime_ratio);
+  if (!s.stability_notice.empty())
+    ImGui::TextColored(ImVec4(1, 0.7f, 0.2f, 1), "%s", s.stability_notice.c_str());
   if (s.run == RunStatus::diverged)
     ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "diverged: %s", s.divergence_reason.c_str());
 }
@@ -53,6 +88,7 @@ void energy_plot(const SimulationStatus& s) {
 
 void solver_panel(PanelContext& ctx) {
   settings(ctx);
+  accuracy(ctx);
   ImGui::Separator();
   progress(ctx.status);
   energy_plot(ctx.status);

@@ -28,6 +28,10 @@ struct UiValues {
   // drags its neighbours along (4000 s^-2 is omega = 63 rad/s, below the
   // springs' own frequencies in the shipped scenes, so it adds no instability).
   double drag_gain = 4000;
+  // The accuracy slider: the largest position error asked for, as a fraction of
+  // the cloth's size, and what the last request picked (or why nothing).
+  float accuracy = 0.01f;
+  std::string accuracy_pick;
 
   // Text fields (ImGui edits plain char buffers).
   std::array<char, 512> scene_path{};

@@ -1,0 +1,125 @@
+// `neurocloth-cli tradeoff`: measures what each integrator's accuracy costs on a
+// scene and writes the trade as CSV, a log-log chart and a Markdown summary.
+// All three are written to temporary names and renamed at the end, so a failure
+// leaves none of them behind (and no half-written one).
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "input_error.h"
+#include "scene.h"
+#include "trade_chart.h"
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/pareto_front.h"
+#include "tradeoff/trade_csv.h"
+#include "tradeoff/trade_summary.h"
+#include "tradeoff/tradeoff_sweep.h"
+
+namespace neurocloth {
+namespace {
+
+void write_text(const std::string& path, const std::string& text, const std::string& target) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) throw std::runtime_error(target + ": cannot write output file");
+}
+
+// Fails now, naming the file, if REPORT's folder cannot take a file: better
+// than after a minute of measuring.
+void check_writable(const std::string& report) {
+  const std::string probe = report + ".csv.probe." + std::to_string(::getpid());
+  {
+    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError("command line", "--out", report + ".csv: cannot write output file");
+  }
+  std::remove(probe.c_str());
+}
+
+}  // namespace
+
+TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
+  if (!(o.seconds > 0) || !std::isfinite(o.seconds))
+    throw InputError("command line", "--seconds", "must be a finite number > 0");
+  if (o.samples < 1) throw InputError("command line", "--samples", "must be >= 1");
+  if (!(o.reference_budget > 0) || !std::isfinite(o.reference_budget))
+    throw InputError("command line", "--reference-budget", "must be a finite number > 0 (seconds)");
+  if (!(o.method_budget > 0) || !std::isfinite(o.method_budget))
+    throw InputError("command line", "--method-budget", "must be a finite number > 0 (seconds)");
+  if (o.levels < 1) throw InputError("command line", "--levels", "must be >= 1");
+  for (const std::string& m : o.methods)
+    if (m != kAdaptiveMethod && !parse_integrator(m))
+      throw InputError("command line", "--methods",
+                       "unknown method '" + m + "' (expected one of: " + integrator_names() + ", " +
+                           kAdaptiveMethod + ")");
+  TradeoffPlan plan;
+  plan.seconds = o.seconds;
+  plan.samples = o.samples;
+  plan.reference.budget_seconds = o.reference_budget;
+  plan.method_budget_seconds = o.method_budget;
+  plan.max_levels = o.levels;
+  plan.methods = o.methods;
+  return plan;
+}
+
+TradeTable measure_trade(const Scene& scene, const std::string& scene_file,
+                         const TradeoffPlan& plan) {
+  return measure_tradeoff(scene, scene_file, plan,
+                          [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
+}
+
+int run_tradeoff(const TradeoffOptions& o) {
+  const TradeoffPlan plan = tradeoff_plan(o);
+  const Scene scene = load_scene(o.scene);
+  if (o.out.empty()) throw InputError("command line", "--out", "must name a file");
+  check_writable(o.out);
+
+  std::printf("tradeoff %s: %g s simulated per run, compared at %d times\n", scene.name.c_str(),
+              plan.seconds, plan.samples);
+  std::fflush(stdout);
+  const TradeTable trade = measure_trade(scene, o.scene, plan);
+
+  const std::string base = o.out, tmp = ".tmp." + std::to_string(::getpid());
+  const std::string csv = base + ".csv", png = base + ".png", md = base + ".md";
+  const std::string chart_name = png.substr(png.find_last_of('/') + 1);
+  try {
+    write_text(csv + tmp, trade_csv(trade), csv);
+    write_trade_chart(trade, png + tmp);
+    release_chart_caches();  // the one chart of this process is drawn
+    write_text(md + tmp, trade_summary(trade, chart_name), md);
+    for (const std::string& f : {csv, png, md})
+      if (std::rename((f + tmp).c_str(), f.c_str()) != 0)
+        throw std::runtime_error(f + ": cannot move output file into place");
+  } catch (...) {
+    for (const std::string& f : {csv, png, md})
+      std::remove((f + tmp).c_str());
+    throw;
+  }
+
+  const ReferenceReport& r = trade.reference;
+  std::printf("reference: rk4 dt = %.4g s, last halving changed %.3g of the size (target %g %s)\n",
+              r.dt, r.change, r.target, r.met ? "met" : "NOT met");
+  for (double budget : kErrorBudgets) {
+    const auto pick = cheapest_meeting(trade.rows, budget);
+    if (budget < reference_resolution(trade))
+      std::printf("  %-6s not certified (below the reference's resolution)\n",
+                  percent(budget).c_str());
+    else if (pick)
+      std::printf("  %-6s %s: %.3g s wall per simulated s\n", percent(budget).c_str(),
+                  describe_setting(trade.rows[*pick]).c_str(),
+                  trade.rows[*pick].wall_per_simulated_second);
+    else
+      std::printf("  %-6s no measured setting meets it\n", percent(budget).c_str());
+  }
+  std::printf("measured in %.1f s; wrote %s, %s, %s\n", trade.wall_seconds, csv.c_str(),
+              png.c_str(), md.c_str());
+  return kExitOk;
+}
+
+}  // namespace neurocloth

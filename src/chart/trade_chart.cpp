@@ -1,0 +1,64 @@
+#include "trade_chart.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/pareto_front.h"
+
+namespace neurocloth {
+
+Rgb method_colour(const std::string& method) {
+  if (method == "network") return {0.12, 0.47, 0.71};         // blue
+  if (method == "explicit_euler") return {1.00, 0.50, 0.05};  // orange
+  if (method == "verlet") return {0.17, 0.63, 0.17};          // green
+  if (method == "rk4") return {0.84, 0.15, 0.16};             // red
+  if (method == "implicit_euler") return {0.58, 0.40, 0.74};  // purple
+  if (method == kAdaptiveMethod) return {0.55, 0.34, 0.29};   // brown
+  return {0.5, 0.5, 0.5};
+}
+
+ChartSpec trade_chart_spec(const TradeTable& t) {
+  ChartSpec spec;
+  char title[200];
+  std::snprintf(title, sizeof title, "%s: error against cost (%g s simulated)", t.scene.c_str(),
+                t.seconds);
+  spec.title = title;
+  spec.x_label = "wall seconds per simulated second";
+  spec.y_label = "max position error / cloth size";
+  spec.ring_legend = "Pareto front";
+  const std::vector<std::size_t> front = pareto_front(t.rows);
+  // One series per method, in the order the methods first appear.
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const TradeRow& r = t.rows[i];
+    if (!r.ok()) continue;
+    auto s = std::find_if(spec.series.begin(), spec.series.end(),
+                          [&](const ChartSeries& c) { return c.name == r.method; });
+    if (s == spec.series.end()) {
+      spec.series.push_back({r.method, method_colour(r.method), {}});
+      s = spec.series.end() - 1;
+    }
+    const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
+    s->points.push_back({r.wall_per_simulated_second, r.position_error_max, on_front});
+  }
+  // A method none of whose settings finished still gets its legend entry, saying so.
+  for (const TradeRow& r : t.rows)
+    if (std::none_of(spec.series.begin(), spec.series.end(),
+                     [&](const ChartSeries& c) { return c.name == r.method; }))
+      spec.series.push_back({r.method, method_colour(r.method), {}});
+  for (ChartSeries& s : spec.series) {
+    if (s.points.empty()) s.name += " (none finished)";
+  }
+  for (ChartSeries& s : spec.series)
+    std::stable_sort(s.points.begin(), s.points.end(),
+                     [](const ChartPoint& a, const ChartPoint& b) { return a.x < b.x; });
+  if (!t.reference.met && t.reference.change > 0)
+    spec.rules.push_back({t.reference.change, "reference resolution"});
+  return spec;
+}
+
+void write_trade_chart(const TradeTable& trade, const std::string& path) {
+  LogLogChart(trade_chart_spec(trade)).write_png(path);
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,21 @@
+#pragma once
+// The trade's chart: max position error against wall seconds per simulated
+// second, log-log, one line per method (in cost order), the Pareto front
+// ringed and joined, the reference's resolution as a dashed rule when it did
+// not reach its target.
+#include <string>
+
+#include "loglog_chart.h"
+#include "tradeoff/trade_table.h"
+
+namespace neurocloth {
+
+// Each method's colour, the same in every chart (black is the Pareto front's).
+Rgb method_colour(const std::string& method);
+
+ChartSpec trade_chart_spec(const TradeTable& trade);
+
+// Throws std::runtime_error naming `path` when it cannot be written.
+void write_trade_chart(const TradeTable& trade, const std::string& path);
+
+}  // namespace neurocloth

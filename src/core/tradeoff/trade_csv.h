@@ -1,0 +1,34 @@
+#pragma once
+// The trade as CSV: a few "# key: value" lines saying what was measured and how
+// well the reference converged, one header line, one line per setting. Settings
+// (value, dt) are written with 17 digits so a picked setting is exactly the one
+// measured; measurements with 6. docs/tradeoff.md lists the columns.
+#include <string>
+
+#include "trade_table.h"
+
+namespace neurocloth {
+
+// The columns, in order.
+inline constexpr const char* kTradeColumns[] = {"method",
+                                                "parameter",
+                                                "value",
+                                                "dt",
+                                                "steps",
+                                                "position_error_max",
+                                                "position_error_rms",
+                                                "energy_error",
+                                                "wall_per_simulated_second",
+                                                "force_evaluations",
+                                                "rejected_steps",
+                                                "status"};
+
+std::string trade_csv(const TradeTable& table);
+
+// Reads what trade_csv wrote. Throws InputError naming `path`, the line and
+// column, and the field (a column or a "# key") for anything wrong; never
+// returns a half-read table.
+TradeTable parse_trade_csv(const std::string& text, const std::string& path);
+TradeTable read_trade_csv(const std::string& path);
+
+}  // namespace neurocloth

@@ -1,0 +1,33 @@
+#include "trade_table.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace neurocloth {
+
+SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
+  base.dt = row.dt;
+  if (row.method == kAdaptiveMethod) {
+    base.integrator = IntegratorKind::network;
+    base.adaptive = true;
+    base.adaptive_settings.safety = row.value;
+    return base;
+  }
+  const auto kind = parse_integrator(row.method);
+  if (!kind) throw std::invalid_argument("unknown method '" + row.method + "'");
+  base.integrator = *kind;
+  base.adaptive = false;
+  return base;
+}
+
+std::string describe_setting(const TradeRow& row) {
+  char s[160];
+  if (row.method == kAdaptiveMethod)
+    std::snprintf(s, sizeof s, "%s, safety %.4g (t_delta %.4g s)", row.method.c_str(), row.value,
+                  row.dt);
+  else
+    std::snprintf(s, sizeof s, "%s, dt %.4g s", row.method.c_str(), row.dt);
+  return s;
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,57 @@
+#pragma once
+// A measured trade between speed and accuracy on one scene: every setting tried
+// (an integrator at a fixed step, or the paper's adaptive propagation at a
+// safety factor), what it cost per simulated second and how far it landed from
+// the converged reference. The tradeoff command writes it (trade_csv.h);
+// `simulate --accuracy` and the viewer pick from it (accuracy_choice.h).
+#include <string>
+#include <vector>
+
+#include "converged_reference.h"
+#include "solver_settings.h"
+
+namespace neurocloth {
+
+// The method name of the paper's adaptive propagation (network integrator, Table 1).
+inline constexpr const char* kAdaptiveMethod = "adaptive";
+
+struct TradeRow {
+  std::string method;     // an integrator's name, or kAdaptiveMethod
+  std::string parameter;  // what the sweep varies: "dt" (fixed step) or "safety" (adaptive)
+  double value = 0;       // its value
+  double dt = 0;          // the fixed step, or the adaptive refresh interval t_delta, s
+  long steps = 0;
+  // Relative to the cloth's size (positions) and to the energy scale (run_error.h);
+  // NaN when the run did not finish (nothing to compare).
+  double position_error_max = 0;
+  double position_error_rms = 0;
+  double energy_error = 0;
+  double wall_per_simulated_second = 0;
+  long force_evaluations = 0;
+  long rejected_steps = 0;
+  std::string status = "ok";  // "ok", "diverged", or "stopped" (ran out of step budget)
+
+  bool ok() const { return status == "ok"; }
+};
+
+struct TradeTable {
+  std::string scene;        // the scene's name
+  std::string scene_file;   // as given to the command
+  double seconds = 0;       // simulated per run
+  int samples = 0;          // compared at this many evenly spaced times
+  double cloth_size = 0;    // m
+  double energy_scale = 0;  // J
+  ReferenceReport reference;
+  double wall_seconds = 0;  // the whole measurement
+  // Why each method's sweep stopped ("network: levels"), in sweep order.
+  std::vector<std::string> sweep_stops;
+  std::vector<TradeRow> rows;
+};
+
+// The solver settings a row stands for, on top of the scene's own (`base`):
+// throws std::invalid_argument for a method that is neither an integrator nor adaptive.
+SolverSettings settings_for(const TradeRow& row, SolverSettings base);
+// "rk4, dt 0.000488 s" or "adaptive, safety 0.25 (t_delta 0.04 s)".
+std::string describe_setting(const TradeRow& row);
+
+}  // namespace neurocloth

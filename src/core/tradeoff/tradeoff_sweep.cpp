@@ -1,0 +1,200 @@
+#include "tradeoff_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include "stability.h"
+
+namespace neurocloth {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+TradeRow row_from(const SampledRun& run, const SampledRun& reference, const ErrorScale& scale,
+                  std::size_t samples) {
+  TradeRow row;
+  row.dt = run.settings.dt;
+  row.steps = run.steps;
+  row.force_evaluations = run.force_evaluations;
+  row.rejected_steps = run.rejected_steps;
+  row.wall_per_simulated_second =
+      run.simulated_seconds > 0 ? run.wall_seconds / run.simulated_seconds : kNaN;
+  if (run.complete(samples)) {
+    const RunError e = compare_runs(run, reference, scale);
+    row.position_error_max = e.position_max;
+    row.position_error_rms = e.position_rms;
+    row.energy_error = e.energy;
+  } else {
+    row.position_error_max = row.position_error_rms = row.energy_error = kNaN;
+    row.status = run.status != RunStatus::ok ? "diverged" : "stopped";
+  }
+  return row;
+}
+
+std::string describe_row(const TradeRow& row) {
+  char s[256];
+  std::snprintf(s, sizeof s, "%s: %s, max error %.3g, rms %.3g, %.3g s wall per simulated s",
+                describe_setting(row).c_str(), row.status.c_str(), row.position_error_max,
+                row.position_error_rms, row.wall_per_simulated_second);
+  return s;
+}
+
+bool wanted(const TradeoffPlan& plan, const std::string& method) {
+  return plan.methods.empty() ||
+         std::find(plan.methods.begin(), plan.methods.end(), method) != plan.methods.end();
+}
+
+// Why a method's sweep stops after `row`, made by `run` (empty: go on). A run
+// that did not finish says little about what the next one costs: only the time
+// already spent counts against the budget then.
+std::string stop_reason(const TradeoffPlan& plan, const ReferenceReport& ref, const TradeRow& row,
+                        int levels, double line_wall, const SampledRun& run) {
+  if (row.ok() && row.position_error_max <= plan.error_floor) return "error floor";
+  // At least a few settings even then, so that the chart shows the line's slope
+  // (and where it flattens on the reference's own error).
+  if (row.ok() && !ref.met && ref.change >= 0 && row.position_error_max <= 2 * ref.change &&
+      levels >= plan.min_levels)
+    return "reference resolution";
+  if (levels >= plan.max_levels) return "levels";
+  const double next = row.ok() ? 2 * run.wall_seconds : 0;
+  if (line_wall + next > plan.method_budget_seconds) return "budget";
+  return "";
+}
+
+}  // namespace
+
+double first_step(const Scene& scene, IntegratorKind kind, double interval) {
+  if (kind == IntegratorKind::implicit_euler) return interval / 4;
+  const ClothNetwork net = scene.build_network();
+  const double bound = stable_step_bound(net, make_integrator(kind, net)->stability_limit());
+  double h = interval;
+  while (h > 2 * bound && h > interval * 1e-12)
+    h /= 2;
+  return h;
+}
+
+namespace {
+
+// What every method's sweep shares.
+struct Sweep {
+  const Scene& scene;
+  const TradeoffPlan& plan;
+  const std::vector<double>& times;
+  const ErrorScale& scale;
+  const ConvergedReference& ref;
+  const std::function<void(const std::string&)>& log;
+  TradeTable& table;
+
+  void say(const std::string& s) const {
+    if (log) log(s);
+  }
+
+  // Runs one setting and adds its row; false when the method's sweep stops here.
+  bool measure(const SolverSettings& s, const std::string& method, const char* parameter,
+               double value, int level, double& line_wall) {
+    const SampledRun run = run_sampled_timed(scene, s, times);
+    line_wall += run.wall_seconds;
+    TradeRow row = row_from(run, ref.run, scale, times.size());
+    row.method = method;
+    row.parameter = parameter;
+    row.value = value;
+    say(describe_row(row));
+    table.rows.push_back(row);
+    const std::string why = stop_reason(plan, ref.report, row, level, line_wall, run);
+    if (why.empty()) return true;
+    say("  " + method + " stops: " + why);
+    table.sweep_stops.push_back(method + ": " + why);
+    return false;
+  }
+
+  // RK4's line: the reference's own coarser runs.
+  void rk4() {
+    for (const SampledRun& run : ref.coarser) {
+      TradeRow row = row_from(run, ref.run, scale, times.size());
+      row.method = to_string(IntegratorKind::rk4);
+      row.parameter = "dt";
+      row.value = row.dt;
+      say(describe_row(row));
+      table.rows.push_back(row);
+    }
+  }
+
+  void fixed_step(IntegratorKind kind) {
+    SolverSettings s = scene.solver;
+    s.integrator = kind;
+    s.adaptive = false;
+    s.dt = first_step(scene, kind, plan.seconds / plan.samples);
+    double line_wall = 0;
+    for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_wall); ++level)
+      s.dt /= 2;
+  }
+
+  // The paper's propagation at the scene's refresh interval, halving the
+  // safety factor: the cap on t_c is min(t_delta, safety * stability bound), so
+  // values giving the same cap as the one before are skipped.
+  void adaptive() {
+    const ClothNetwork net = scene.build_network();
+    const double bound =
+        stable_step_bound(net, make_integrator(IntegratorKind::network, net)->stability_limit());
+    SolverSettings s = scene.solver;
+    s.integrator = IntegratorKind::network;
+    s.adaptive = true;
+    double line_wall = 0, last_cap = -1;
+    int level = 0;
+    for (double safety = 1; safety > 1e-6; safety /= 2) {
+      const double cap = std::min(s.dt, safety * bound);
+      if (cap == last_cap) continue;
+      last_cap = cap;
+      s.adaptive_settings.safety = safety;
+      if (!measure(s, kAdaptiveMethod, "safety", safety, ++level, line_wall)) return;
+    }
+  }
+};
+
+}  // namespace
+
+TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
+                            const TradeoffPlan& plan,
+                            const std::function<void(const std::string&)>& log) {
+  if (!(plan.seconds > 0) || !std::isfinite(plan.seconds))
+    throw std::invalid_argument("seconds must be a finite number > 0");
+  if (plan.samples < 1) throw std::invalid_argument("samples must be >= 1");
+  for (const std::string& m : plan.methods)
+    if (m != kAdaptiveMethod && !parse_integrator(m))
+      throw std::invalid_argument("unknown method '" + m + "' (expected one of: " +
+                                  integrator_names() + ", " + kAdaptiveMethod + ")");
+  const auto start = std::chrono::steady_clock::now();
+
+  TradeTable table;
+  table.scene = scene.name;
+  table.scene_file = scene_file;
+  table.seconds = plan.seconds;
+  table.samples = plan.samples;
+  const ErrorScale scale = error_scale(scene);
+  table.cloth_size = scale.size;
+  table.energy_scale = scale.energy;
+  const std::vector<double> times = sample_times(plan.seconds, plan.samples);
+  const double interval = plan.seconds / plan.samples;
+  const ConvergedReference ref = converge_reference(
+      scene, times, scale, first_step(scene, IntegratorKind::rk4, interval), plan.reference, log);
+  table.reference = ref.report;
+
+  Sweep sweep{scene, plan, times, scale, ref, log, table};
+  for (IntegratorKind kind : kAllIntegrators) {
+    if (!wanted(plan, to_string(kind))) continue;
+    if (kind == IntegratorKind::rk4)
+      sweep.rk4();
+    else
+      sweep.fixed_step(kind);
+  }
+  if (wanted(plan, kAdaptiveMethod)) sweep.adaptive();
+  table.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return table;
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,45 @@
+#pragma once
+// Measures the trade on one scene: the converged RK4 reference first, then
+// every integrator over a sweep of fixed steps and the paper's adaptive
+// propagation over a sweep of its safety factor, each compared with the
+// reference at the same sample times (docs/tradeoff.md says why these knobs
+// and these stopping rules).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "trade_table.h"
+
+namespace neurocloth {
+
+struct TradeoffPlan {
+  double seconds = 2;  // simulated per run
+  int samples = 8;     // compared at seconds * j / samples, j = 1..samples
+  ReferencePlan reference;
+  // Each method's sweep halves its step (or safety) from its largest useful
+  // value and stops at the first of: `max_levels` settings; an error at or
+  // below `error_floor` (a finer step cannot be the cheapest for any budget at
+  // or above it); an error within twice the reference's own change, once it has
+  // `min_levels` settings (finer ones could not be told from the reference); or
+  // a next run predicted to overrun `method_budget_seconds` of wall time for the method.
+  int max_levels = 7;
+  int min_levels = 3;
+  double error_floor = 1e-4;
+  double method_budget_seconds = 8;
+  // The methods to sweep (integrator names and/or "adaptive"); empty: all six.
+  // RK4's line always comes from the reference's own runs.
+  std::vector<std::string> methods;
+};
+
+// Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
+// an unknown method), std::runtime_error when even the reference diverges.
+TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
+                            const TradeoffPlan& plan,
+                            const std::function<void(const std::string&)>& log = {});
+
+// The sweep's largest fixed step for `kind` on `scene`: the largest
+// interval / 2^k at or below twice the explicit stability bound (so the first
+// setting may sit just past it), or interval / 4 for the implicit step.
+double first_step(const Scene& scene, IntegratorKind kind, double interval);
+
+}  // namespace neurocloth

@@ -1,0 +1,56 @@
+#include "accuracy_control.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/pareto_front.h"
+#include "tradeoff/trade_csv.h"
+
+namespace neurocloth {
+
+AccuracyTrade load_accuracy_trade(const std::string& scene_path) {
+  AccuracyTrade t;
+  t.path = committed_trade_path(scene_path);
+  if (!std::filesystem::exists(t.path)) {
+    t.note = "no measured trade for this scene (neurocloth-cli tradeoff writes " + t.path + ")";
+    return t;
+  }
+  try {
+    TradeTable table = read_trade_csv(t.path);
+    const auto best = most_accurate(table.rows);
+    if (!best) {
+      t.note = t.path + ": no setting finished ok";
+      return t;
+    }
+    // Finer than the best measured setting, or than the reference could tell
+    // apart, cannot be vouched for.
+    t.finest = std::max(table.rows[*best].position_error_max, reference_resolution(table));
+    if (!std::isfinite(t.finest) || t.finest <= 0) t.finest = table.rows[*best].position_error_max;
+    t.loosest = std::max(t.finest, kErrorBudgets[0]);
+    t.table = std::move(table);
+  } catch (const std::exception& e) {
+    t.note = e.what();
+  }
+  return t;
+}
+
+AccuracyPick pick_for_accuracy(const AccuracyTrade& trade, double accuracy,
+                               const SolverSettings& scene_solver) {
+  if (!trade.table) throw std::logic_error("pick_for_accuracy without a trade");
+  const AccuracyChoice c =
+      choose_for_accuracy(*trade.table, trade.path, accuracy, scene_solver, "accuracy");
+  AccuracyPick p;
+  p.command = SetSolver{c.settings.integrator, c.settings.dt, c.settings.adaptive,
+                        c.settings.adaptive_settings.safety};
+  char line[160];
+  std::snprintf(line, sizeof line, ": measured %.3g%% at %.3g wall s per s",
+                100 * c.row.position_error_max, c.row.wall_per_simulated_second);
+  p.description = describe_setting(c.row) + line;
+  return p;
+}
+
+}  // namespace neurocloth

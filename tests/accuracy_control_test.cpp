@@ -1,0 +1,66 @@
+// The Solver panel's accuracy slider, without a window: the scene's committed
+// trade is found, a request becomes the command the measured pick stands for,
+// and a request the trade cannot vouch for is refused naming the file.
+#include "accuracy_control.h"
+
+#include <gtest/gtest.h>
+
+#include "asset_paths.h"
+#include "input_error.h"
+#include "scene.h"
+#include "tradeoff/accuracy_choice.h"
+
+namespace neurocloth {
+namespace {
+
+std::string hanging() {
+  return assets_directory() + "/scenes/hanging.json";
+}
+
+TEST(AccuracyControl, TheCommittedTradeIsFoundWithItsRange) {
+  const AccuracyTrade t = load_accuracy_trade(hanging());
+  ASSERT_TRUE(t.table.has_value()) << t.note;
+  EXPECT_GT(t.finest, 0);
+  EXPECT_LT(t.finest, 0.01) << "the hanging trade reaches below 1%";
+  EXPECT_EQ(t.loosest, 0.1);
+}
+
+TEST(AccuracyControl, ARequestBecomesThePickedSettingAsOneCommand) {
+  const Scene scene = load_scene(hanging());
+  const AccuracyTrade t = load_accuracy_trade(hanging());
+  ASSERT_TRUE(t.table.has_value()) << t.note;
+  for (double e : {0.1, 0.01, 0.001}) {
+    const AccuracyPick p = pick_for_accuracy(t, e, scene.solver);
+    const AccuracyChoice c = choose_for_accuracy(*t.table, t.path, e, scene.solver);
+    EXPECT_LE(c.row.position_error_max, e);
+    EXPECT_EQ(p.command.integrator, c.settings.integrator) << e;
+    EXPECT_EQ(p.command.dt, c.settings.dt) << e;
+    EXPECT_EQ(p.command.adaptive, c.settings.adaptive) << e;
+    EXPECT_EQ(p.command.safety, c.settings.adaptive_settings.safety) << e;
+    EXPECT_NE(p.description.find(describe_setting(c.row)), std::string::npos) << p.description;
+  }
+  // Tighter costs more: the 0.1% pick takes a smaller step than the 10% one.
+  EXPECT_LT(pick_for_accuracy(t, 0.001, scene.solver).command.dt,
+            pick_for_accuracy(t, 0.1, scene.solver).command.dt);
+}
+
+TEST(AccuracyControl, BeyondWhatTheTradeVouchesForIsRefusedNamingTheFile) {
+  const Scene scene = load_scene(hanging());
+  const AccuracyTrade t = load_accuracy_trade(hanging());
+  ASSERT_TRUE(t.table.has_value()) << t.note;
+  try {
+    pick_for_accuracy(t, t.finest / 100, scene.solver);
+    FAIL() << "an accuracy finer than the trade's was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hanging.csv"), std::string::npos) << e.what();
+  }
+}
+
+TEST(AccuracyControl, ASceneWithoutATradeSaysHowToMakeOne) {
+  const AccuracyTrade t = load_accuracy_trade("/nowhere/no_such_scene.json");
+  EXPECT_FALSE(t.table.has_value());
+  EXPECT_NE(t.note.find("tradeoff"), std::string::npos) << t.note;
+}
+
+}  // namespace
+}  // namespace neurocloth

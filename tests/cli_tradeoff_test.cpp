@@ -1,0 +1,205 @@
+// `neurocloth-cli tradeoff` and `simulate --accuracy`, run as a user would: a
+// real process, real files, exit codes. Small scenes and short runs, so it is fast.
+#include "cli_fixture.h"
+#include "tradeoff/trade_csv.h"
+
+namespace neurocloth::cli_test {
+namespace {
+
+// A fast tradeoff on the hanging cloth: 0.05 s, two compared times, two settings a method.
+std::vector<std::string> quick_tradeoff(const std::string& scene, const std::string& out) {
+  return {"tradeoff",           scene, "--seconds",       "0.05", "--samples", "2", "--levels", "2",
+          "--reference-budget", "5",   "--method-budget", "2",    "--out",     out};
+}
+
+TradeRow row(const std::string& method, double dt, double cost, double error) {
+  TradeRow r;
+  r.method = method;
+  r.parameter = method == kAdaptiveMethod ? "safety" : "dt";
+  r.dt = dt;
+  r.value = method == kAdaptiveMethod ? 0.5 : dt;
+  r.steps = 100;
+  r.position_error_max = error;
+  r.position_error_rms = error / 3;
+  r.energy_error = error / 10;
+  r.wall_per_simulated_second = cost;
+  r.force_evaluations = 100;
+  return r;
+}
+
+// A hand-made trade for `scene`: verlet at 2 ms is the cheapest within 1%, the
+// adaptive propagation the cheapest within 20%, rk4 the most accurate (1e-5).
+std::string hand_made_trade(const std::string& scene = "hanging") {
+  TradeTable t;
+  t.scene = scene;
+  t.scene_file = "assets/scenes/hanging.json";
+  t.seconds = 0.5;
+  t.samples = 4;
+  t.cloth_size = 1.34;
+  t.energy_scale = 52;
+  t.reference.dt = 1e-4;
+  t.reference.change = 1e-10;
+  t.reference.met = true;
+  t.reference.stopped_by = "target";
+  t.rows = {row("network", 0.002, 0.02, 0.05), row(kAdaptiveMethod, 0.004, 0.01, 0.15),
+            row("verlet", 0.002, 0.04, 0.008), row("rk4", 0.002, 0.1, 1e-5)};
+  return trade_csv(t);
+}
+
+TEST_F(Cli, TradeoffWritesTheTableTheChartAndTheSummary) {
+  const std::string report = (out_dir() / "hanging").string();
+  const Outcome r = run(quick_tradeoff(scene_asset("hanging"), report));
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  std::vector<std::string> files = files_in_out_dir();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"hanging.csv", "hanging.md", "hanging.png"}));
+  EXPECT_NE(r.out.find("reference: rk4"), std::string::npos) << r.out;
+
+  const TradeTable t = read_trade_csv(report + ".csv");
+  EXPECT_EQ(t.scene, "hanging");
+  EXPECT_EQ(t.seconds, 0.05);
+  EXPECT_EQ(t.samples, 2);
+  EXPECT_GT(t.reference.runs, 1);
+  for (const char* m : {"network", "explicit_euler", "verlet", "rk4", "implicit_euler", "adaptive"})
+    EXPECT_TRUE(std::any_of(t.rows.begin(), t.rows.end(), [&](const TradeRow& row) {
+      return row.method == m;
+    })) << m;
+
+  const std::string png = read_text(report + ".png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+
+  const std::string md = read_text(report + ".md");
+  for (const char* budget : {"| 10% |", "| 1% |", "| 0.1% |", "| 0.01% |"})
+    EXPECT_NE(md.find(budget), std::string::npos) << budget << " not in:\n" << md;
+  EXPECT_NE(md.find("![error against cost](hanging.png)"), std::string::npos) << md;
+}
+
+TEST_F(Cli, AccuracyPicksTheCheapestSettingFromAGivenTrade) {
+  const std::string trade = write("trade.csv", hand_made_trade());
+  Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--accuracy", "0.01",
+                   "--trade", trade, "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("accuracy 0.01: picked verlet, dt 0.002 s from " + trade), std::string::npos)
+      << r.out;
+  json doc = read_result();
+  EXPECT_EQ(doc.at("integrator"), "verlet");
+  EXPECT_EQ(doc.at("dt").get<double>(), 0.002);
+  EXPECT_FALSE(doc.at("adaptive").get<bool>());
+  EXPECT_EQ(doc.at("steps").get<long>(), 5);
+  const json& a = doc.at("accuracy");
+  EXPECT_EQ(a.at("requested").get<double>(), 0.01);
+  EXPECT_EQ(a.at("trade"), trade);
+  EXPECT_EQ(a.at("method"), "verlet");
+  EXPECT_EQ(a.at("measured_position_error_max").get<double>(), 0.008);
+  EXPECT_EQ(a.at("measured_wall_per_simulated_second").get<double>(), 0.04);
+
+  // A looser accuracy: the paper's adaptive propagation is cheaper and good enough.
+  r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--accuracy", "0.2", "--trade",
+           trade, "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  doc = read_result();
+  EXPECT_EQ(doc.at("integrator"), "network");
+  EXPECT_TRUE(doc.at("adaptive").get<bool>());
+  EXPECT_EQ(doc.at("dt").get<double>(), 0.004);
+  EXPECT_EQ(doc.at("accuracy").at("parameter"), "safety");
+  EXPECT_EQ(doc.at("accuracy").at("value").get<double>(), 0.5);
+}
+
+TEST_F(Cli, AccuracyUsesTheCommittedTradeOfAShippedScene) {
+  const std::string committed = assets_directory() + "/tradeoff/hanging.csv";
+  ASSERT_TRUE(fs::exists(committed)) << committed;
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--accuracy",
+                         "0.01", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("from " + committed), std::string::npos) << r.out;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("accuracy").at("trade"), committed);
+  EXPECT_LE(doc.at("accuracy").at("measured_position_error_max").get<double>(), 0.01);
+}
+
+TEST_F(Cli, AccuracyMeasuresATradeWhenNoneIsCommittedAndSaysSo) {
+  // A scene under a name no committed trade has.
+  const std::string scene = write("my_chain.json", read_text(scene_asset("chain")));
+  const Outcome r =
+      run({"simulate", scene, "--seconds", "0.05", "--accuracy", "0.1", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("no measured trade"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("measuring one over 0.05 s first"), std::string::npos) << r.out;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("accuracy").at("trade"), "measured now");
+  EXPECT_LE(doc.at("accuracy").at("measured_position_error_max").get<double>(), 0.1);
+  EXPECT_EQ(files_in_out_dir(), std::vector<std::string>{"result.json"});
+}
+
+TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
+  const std::string report = (out_dir() / "report").string();
+  expect_input_error(quick_tradeoff(dir_.string() + "/missing.json", report), {"missing.json"});
+  for (const char* seconds : {"0", "-1", "inf"}) {
+    std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
+    args[3] = seconds;
+    expect_input_error(args, {"--seconds", "must be a finite number > 0"});
+  }
+  std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
+  args.insert(args.end(), {"--methods", "network,leapfrog"});
+  expect_input_error(args, {"--methods", "leapfrog"});
+  // A folder that does not exist: refused before measuring, naming the file.
+  expect_input_error(quick_tradeoff(scene_asset("hanging"), dir_.string() + "/nowhere/report"),
+                     {"--out", "nowhere/report.csv"}, 10);
+  // A scene with an error in it names its file and line.
+  const std::string bad = write("bad.json", with(read_text(scene_asset("hanging")),
+                                                 "\"node_mass\": 0.01", "\"node_mass\": -0.01"));
+  expect_input_error(quick_tradeoff(bad, report), {"bad.json:", "material.node_mass"});
+}
+
+TEST_F(Cli, AccuracyBadInputNamesWhatIsWrong) {
+  const std::string hanging = scene_asset("hanging");
+  const std::string trade = write("trade.csv", hand_made_trade());
+  auto simulate = [&](const std::vector<std::string>& more) {
+    std::vector<std::string> args = {"simulate", hanging, "--seconds",
+                                     "0.01",     "--out", result_path()};
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  for (const char* bad : {"0", "-0.01", "nan"})
+    expect_input_error(simulate({"--accuracy", bad, "--trade", trade}),
+                       {"--accuracy", "must be a finite number > 0"});
+  expect_input_error(simulate({"--accuracy", "0.01", "--trade", dir_.string() + "/none.csv"}),
+                     {"none.csv", "cannot open"});
+  const std::string broken_text = with(hand_made_trade(), "verlet,dt", "verlet,safety");
+  const std::string broken = write("broken.csv", broken_text);
+  const auto before = broken_text.begin() + broken_text.find("verlet,safety");
+  const int line = static_cast<int>(std::count(broken_text.begin(), before, '\n')) + 1;
+  expect_input_error(simulate({"--accuracy", "0.01", "--trade", broken}),
+                     {"broken.csv:" + std::to_string(line) + ":8: field 'parameter'"});
+  expect_input_error(simulate({"--accuracy", "1e-9", "--trade", trade}),
+                     {"trade.csv", "--accuracy", "best achievable is rk4, dt 0.002 s"});
+  const std::string flag_trade = write("flag.csv", hand_made_trade("flag"));
+  expect_input_error(simulate({"--accuracy", "0.01", "--trade", flag_trade}),
+                     {"flag.csv", "# scene", "measured for scene 'flag', not for 'hanging'"});
+}
+
+TEST_F(Cli, AccuracyExcludesChoosingTheStepByHand) {
+  const std::string trade = write("trade.csv", hand_made_trade());
+  for (const std::vector<std::string>& by_hand : {std::vector<std::string>{"--dt", "0.001"},
+                                                  {"--integrator", "rk4"},
+                                                  {"--adaptive"},
+                                                  {"--fixed-step"}}) {
+    std::vector<std::string> args = {"simulate",   scene_asset("hanging"),
+                                     "--seconds",  "0.01",
+                                     "--accuracy", "0.01",
+                                     "--trade",    trade,
+                                     "--out",      result_path()};
+    args.insert(args.end(), by_hand.begin(), by_hand.end());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.code, kUsage) << by_hand[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("excludes"), std::string::npos) << r.err;
+    EXPECT_TRUE(files_in_out_dir().empty());
+  }
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--trade", trade,
+                         "--out", result_path()});
+  EXPECT_EQ(r.code, kUsage) << "--trade without --accuracy: " << r.err;
+}
+
+}  // namespace
+}  // namespace neurocloth::cli_test
