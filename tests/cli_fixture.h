@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "process_run.h"
+
 #include "scene.h"
 
 namespace neurocloth::cli_test {
@@ -22,24 +24,9 @@ using nlohmann::json;
 // The exit codes documented in src/app/commands.h.
 constexpr int kOk = 0, kInputError = 1, kUsage = 2, kDiverged = 3, kStoppedEarly = 5;
 
-struct Outcome {
-  int code = -1;  // -1: did not exit normally; 124: killed by the timeout
-  std::string out, err;
-};
-
-inline std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-inline std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::Outcome;
+using test::quote;
+using test::read_text;
 
 inline std::string scene_asset(const std::string& name) {
   return assets_directory() + "/scenes/" + name + ".json";
@@ -94,18 +81,7 @@ class Cli : public ::testing::Test {
   // same shell first (e.g. a ulimit).
   Outcome run(const std::vector<std::string>& args, int timeout_seconds = 120,
               const std::string& prelude = "") const {
-    std::string cmd =
-        prelude + "timeout -k 5 " + std::to_string(timeout_seconds) + " " + quote(NEUROCLOTH_CLI);
-    for (const auto& a : args)
-      cmd += " " + quote(a);
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    cmd += " >" + quote(out.string()) + " 2>" + quote(err.string());
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-    r.out = read_text(out);
-    r.err = read_text(err);
-    return r;
+    return test::run_process(prelude, NEUROCLOTH_CLI, args, timeout_seconds, dir_);
   }
 
   json read_result() const {

@@ -14,28 +14,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "process_run.h"
+
 namespace neurocloth::viewer_test {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Outcome {
-  int code = -1;  // -1: did not exit normally; 124: killed by the timeout
-  std::string out, err;
-};
-
-inline std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-inline std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::Outcome;
+using test::quote;
+using test::read_text;
 
 inline bool have_xvfb() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
@@ -74,21 +61,10 @@ class Viewer : public ::testing::Test {
   }
 
   Outcome run_once(const std::vector<std::string>& args, bool display, int timeout_seconds) const {
-    std::string cmd = "cd " + quote(dir_.string()) + " && ";
-    if (display)
-      cmd += "xvfb-run -a -s '-screen 0 1280x720x24' ";
-    else
-      cmd += "env -u DISPLAY -u WAYLAND_DISPLAY ";
-    cmd += "timeout -k 5 " + std::to_string(timeout_seconds) + " " + quote(NEUROCLOTH_VIEWER);
-    for (const auto& a : args)
-      cmd += " " + quote(a);
-    cmd += " >" + quote(path("stdout.txt").string()) + " 2>" + quote(path("stderr.txt").string());
-    const int status = std::system(cmd.c_str());
-    Outcome r;
-    if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-    r.out = read_text(path("stdout.txt"));
-    r.err = read_text(path("stderr.txt"));
-    return r;
+    const std::string prelude = "cd " + quote(dir_.string()) + " && " +
+                                (display ? "xvfb-run -a -s '-screen 0 1280x720x24' "
+                                         : "env -u DISPLAY -u WAYLAND_DISPLAY ");
+    return test::run_process(prelude, NEUROCLOTH_VIEWER, args, timeout_seconds, dir_);
   }
 
   // Runs `scene` with `events` and returns the report (failing the test on a bad exit).
