@@ -1,5 +1,5 @@
 // The speed-against-accuracy trade: the error metrics, the converged reference,
-// the sweep, the Pareto front and the picker, and the trade's CSV.
+// the sweep, the Pareto front, the picker and the summary (the CSV: trade_csv_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <numeric>
 #include <optional>
 
+#include "hand_made_trade.h"
 #include "input_error.h"
 #include "stability.h"
 #include "test_support.h"
@@ -20,7 +21,10 @@
 namespace neurocloth {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using test::hand_made;
+using test::hand_made_trade;
+using test::kNaN;
+using test::row;
 
 // hanging.json: 20 x 20 nodes 0.05 m apart in x and z, 0.01 kg each, two pinned.
 constexpr double kHangingSize = 0.95 * 1.4142135623730951;
@@ -267,30 +271,6 @@ TEST(TradeoffSweep, RefusesAPlanItCannotRun) {
 
 // ---- Pareto front and picker, on hand-made tables ----
 
-TradeRow row(const std::string& method, double cost, double error,
-             const std::string& status = "ok") {
-  TradeRow r;
-  r.method = method;
-  r.parameter = method == kAdaptiveMethod ? "safety" : "dt";
-  r.value = r.dt = 0.001;
-  r.wall_per_simulated_second = cost;
-  r.position_error_max = error;
-  r.position_error_rms = error / 4;
-  r.status = status;
-  return r;
-}
-
-std::vector<TradeRow> hand_made() {
-  return {row("network", 1, 0.1),                        // 0: front
-          row("verlet", 2, 0.01),                        // 1: front
-          row("rk4", 3, 0.05),                           // 2: beaten by 1
-          row("explicit_euler", 0.5, 0.5),               // 3: front (cheapest)
-          row("explicit_euler", 0.1, kNaN, "diverged"),  // 4: not finished
-          row("implicit_euler", 2, 0.01),                // 5: ties with 1: both on the front
-          row("rk4", 4, 0.001),                          // 6: front
-          row("adaptive", 4, 0.002)};                    // 7: beaten by 6 (same cost, larger error)
-}
-
 TEST(TradeoffPareto, FrontHoldsWhatNothingBeatsCheapestFirst) {
   EXPECT_EQ(pareto_front(hand_made()), (std::vector<std::size_t>{3, 0, 1, 5, 6}));
 }
@@ -318,18 +298,6 @@ TEST(TradeoffPareto, NothingFinishedMeansNothingToPick) {
   EXPECT_TRUE(pareto_front(rows).empty());
   EXPECT_EQ(cheapest_meeting(rows, 1e9), std::nullopt);
   EXPECT_EQ(most_accurate(rows), std::nullopt);
-}
-
-TradeTable hand_made_trade() {
-  TradeTable t;
-  t.scene = "hand";
-  t.seconds = 2;
-  t.samples = 8;
-  t.reference.change = 1e-10;
-  t.reference.met = true;
-  t.rows = hand_made();
-  t.rows[7].value = 0.25;
-  return t;
 }
 
 TEST(TradeoffAccuracy, PicksTheCheapestAndItsSettings) {
@@ -413,196 +381,6 @@ TEST(TradeoffSummary, NamesTheCheapestForEveryBudget) {
   const std::string unmet = trade_summary(t);
   EXPECT_NE(unmet.find("| 0.1% | not certified"), std::string::npos) << unmet;
   EXPECT_NE(unmet.find("**not met**"), std::string::npos) << unmet;
-}
-
-// ---- CSV ----
-
-TradeTable csv_table() {
-  TradeTable t = hand_made_trade();
-  t.scene_file = "assets/scenes/hand.json";
-  t.cloth_size = 1.3435;
-  t.energy_scale = 52.45;
-  ReferenceReport& r = t.reference;
-  r.dt = 6.103515625e-05;
-  r.change = 1.07e-10;
-  r.change_by_sample = {1e-13, 1.07e-10};
-  r.rms_change = 1e-11;
-  r.met = true;
-  r.runs = 7;
-  r.wall_seconds = 0.88;
-  r.stopped_by = "target";
-  t.wall_seconds = 6.6;
-  t.sweep_stops = {"network: levels", "adaptive: error floor"};
-  t.rows[1].dt = t.rows[1].value = 0.0009765625;
-  t.rows[1].steps = 2048;
-  t.rows[1].force_evaluations = 4096;
-  t.rows[7].rejected_steps = 12;
-  return t;
-}
-
-TEST(TradeoffCsv, RoundTrips) {
-  const TradeTable t = csv_table();
-  const std::string text = trade_csv(t);
-  const TradeTable back = parse_trade_csv(text, "x.csv");
-  EXPECT_EQ(trade_csv(back), text);
-  EXPECT_EQ(back.scene, "hand");
-  EXPECT_EQ(back.scene_file, t.scene_file);
-  EXPECT_EQ(back.seconds, 2);
-  EXPECT_EQ(back.samples, 8);
-  EXPECT_EQ(back.reference.dt, t.reference.dt);  // settings: exact
-  EXPECT_EQ(back.reference.change, t.reference.change);
-  EXPECT_EQ(back.reference.change_by_sample, t.reference.change_by_sample);
-  EXPECT_TRUE(back.reference.met);
-  EXPECT_EQ(back.reference.stopped_by, "target");
-  EXPECT_EQ(back.sweep_stops, t.sweep_stops);
-  ASSERT_EQ(back.rows.size(), t.rows.size());
-  for (std::size_t i = 0; i < t.rows.size(); ++i) {
-    SCOPED_TRACE(i);
-    const TradeRow &a = t.rows[i], &b = back.rows[i];
-    EXPECT_EQ(b.method, a.method);
-    EXPECT_EQ(b.parameter, a.parameter);
-    EXPECT_EQ(b.value, a.value);
-    EXPECT_EQ(b.dt, a.dt);
-    EXPECT_EQ(b.steps, a.steps);
-    EXPECT_EQ(b.status, a.status);
-    EXPECT_EQ(b.force_evaluations, a.force_evaluations);
-    EXPECT_EQ(b.rejected_steps, a.rejected_steps);
-    if (a.ok()) {
-      EXPECT_NEAR(b.position_error_max, a.position_error_max, 1e-6 * a.position_error_max);
-      EXPECT_NEAR(b.wall_per_simulated_second, a.wall_per_simulated_second,
-                  1e-6 * a.wall_per_simulated_second);
-    } else {
-      EXPECT_TRUE(std::isnan(b.position_error_max));
-    }
-  }
-}
-
-// The InputError parse_trade_csv throws for `text`, or a failure.
-std::optional<InputError> csv_error(const std::string& text) {
-  try {
-    parse_trade_csv(text, "broken.csv");
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "accepted:\n" << text;
-  return std::nullopt;
-}
-
-// `text` with the first `from` on line `line` (1-based) replaced by `to`.
-std::string edit_line(std::string text, int line, const std::string& from, const std::string& to) {
-  std::size_t at = 0;
-  for (int l = 1; l < line; ++l)
-    at = text.find('\n', at) + 1;
-  const std::size_t hit = text.find(from, at);
-  EXPECT_LT(hit, text.find('\n', at)) << "test bug: '" << from << "' not on line " << line;
-  return text.replace(hit, from.size(), to);
-}
-
-int line_of(const std::string& text, const std::string& start) {
-  const std::size_t at = text.find("\n" + start);
-  EXPECT_NE(at, std::string::npos) << start;
-  return static_cast<int>(std::count(text.begin(), text.begin() + at + 1, '\n')) + 1;
-}
-
-struct BrokenCsv {
-  const char* what;
-  const char* line_start;  // the line edited
-  const char* from;
-  const char* to;
-  const char* field;
-  const char* at;  // the error's column is where this first is on the edited line ("": its end)
-  const char* message;
-};
-
-TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
-  const std::string good = trade_csv(csv_table());
-  const BrokenCsv cases[] = {
-      {"a word for a number", "verlet,", "0.01,", "0.0x1,", "position_error_max", "0.0x1",
-       "not a finite number: '0.0x1'"},
-      {"an unknown method", "verlet,", "verlet", "leapfrog", "method", "leapfrog",
-       "unknown method"},
-      {"the wrong parameter", "adaptive,", "safety", "dt", "parameter", "dt", "must be 'safety'"},
-      {"a safety above 1", "adaptive,", "0.25", "1.5", "value", "1.5", "(0, 1]"},
-      {"a negative step", "network,", "0.001,0.001", "0.001,-0.001", "dt", "-0.001", "must be > 0"},
-      {"a fraction of a step count", "network,", ",0,", ",1.5,", "steps", "1.5", "whole number"},
-      {"no error on a finished run", "rk4,dt,0.001,0.001,0,0.05", "0.05", "nan",
-       "position_error_max", "nan", "not a finite number"},
-      {"an unknown status", "rk4,dt,0.001,0.001,0,0.05", ",ok", ",fine", "status", "fine",
-       "must be ok, diverged or stopped"},
-      {"a missing field", "network,", ",0,ok", ",ok", "status", "", "expected 12 fields, found 11"},
-      {"a misspelt column", "method,", "position_error_rms", "position_error_rsm", "header",
-       "position_error_rsm", "column 7 must be 'position_error_rms'"},
-      {"a bad metadata value", "# seconds", "2", "two", "# seconds", "two", "not a finite number"},
-      {"reference_met neither yes nor no", "# reference_met", "yes", "maybe", "# reference_met",
-       "maybe", "yes or no"},
-  };
-  for (const BrokenCsv& c : cases) {
-    SCOPED_TRACE(c.what);
-    const int line = line_of(good, c.line_start);
-    const std::string text = edit_line(good, line, c.from, c.to);
-    std::size_t start = 0;
-    for (int l = 1; l < line; ++l)
-      start = text.find('\n', start) + 1;
-    const std::string edited = text.substr(start, text.find('\n', start) - start);
-    const int column = static_cast<int>(*c.at ? edited.find(c.at) + 1 : edited.size() + 1);
-    const auto e = csv_error(text);
-    if (!e) continue;
-    EXPECT_EQ(e->file(), "broken.csv");
-    EXPECT_EQ(e->line(), line) << e->what();
-    EXPECT_EQ(e->field(), c.field) << e->what();
-    EXPECT_EQ(e->column(), column) << e->what();
-    const std::string what = e->what();
-    EXPECT_EQ(what.rfind("broken.csv:" + std::to_string(line) + ":", 0), 0u) << what;
-    EXPECT_NE(what.find(c.message), std::string::npos) << what;
-  }
-}
-
-TEST(TradeoffCsv, MissingPartsAreNamed) {
-  const std::string good = trade_csv(csv_table());
-  const std::string no_scene = edit_line(good, 2, "# scene: hand", "# nothing here");
-  auto e = csv_error(no_scene);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "# scene");
-  EXPECT_EQ(e->line(), line_of(good, "method,"));
-
-  e = csv_error(good.substr(0, good.find("method,")));
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "header");
-
-  e = csv_error(good.substr(0, good.find("network,")));
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "rows");
-
-  e = csv_error("");
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "header");
-
-  try {
-    read_trade_csv("/no/such/trade.csv");
-    ADD_FAILURE() << "read a file that does not exist";
-  } catch (const InputError& err) {
-    EXPECT_EQ(err.file(), "/no/such/trade.csv");
-  }
-}
-
-TEST(TradeoffCsv, BlankLinesCountTowardsLineNumbers) {
-  std::string text = trade_csv(csv_table());
-  const int line = line_of(text, "verlet,");
-  text.insert(text.find("method,"), "\n\n");
-  const auto e = csv_error(edit_line(text, line + 2, "verlet", "leapfrog"));
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->line(), line + 2) << e->what();
-}
-
-TEST(TradeoffCsv, AcceptsWindowsLineEndsAndPeoplesComments) {
-  std::string text = trade_csv(csv_table());
-  text.insert(text.find("method,"), "# measured on a quiet afternoon\n");
-  std::string crlf;
-  for (char c : text)
-    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
-  const TradeTable t = parse_trade_csv(crlf, "x.csv");
-  EXPECT_EQ(t.rows.size(), csv_table().rows.size());
-  EXPECT_EQ(t.rows.back().status, "ok");
 }
 
 }  // namespace
