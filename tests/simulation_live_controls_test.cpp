@@ -216,15 +216,28 @@ TEST(LiveStabilityGuard, AnInputThatStiffensTheMaterialIsCaught) {
 }
 
 // Forward Euler gains energy at any step above viscosity / stiffness: the
-// guard cannot make it stable, so the notice says a divergence is coming.
-TEST(LiveStabilityGuard, ForwardEulerAboveItsDampedLimitIsWarned) {
+// guard takes it in substeps below that; without viscosity no step is stable,
+// and the notice says a divergence is coming.
+TEST(LiveStabilityGuard, ForwardEulerIsKeptBelowItsDampedLimitOrWarned) {
   LiveScene live(test::asset_scene("hanging"), true);
   EXPECT_EQ(live.apply(SetIntegrator{IntegratorKind::explicit_euler}), "");
-  const std::string notice = live.stability_notice();
-  EXPECT_TRUE(contains(notice, "explicit_euler gains energy")) << notice;
-  EXPECT_TRUE(contains(notice, "0.00025 s")) << notice;  // 0.05 N s/m / 200 N/m
-  EXPECT_EQ(live.apply(SetParameter{"dt", 2e-4}), "");
+  Simulation& sim = live.simulation();
+  const double limit = 0.05 / 200;  // viscosity / stiffness
+  EXPECT_NEAR(sim.step_cap(), 0.5 * limit, 1e-12);
+  EXPECT_EQ(sim.substeps(), 8);  // dt = 1 ms in steps of at most 0.125 ms
+  std::string notice = live.stability_notice();
+  EXPECT_TRUE(contains(notice, "8 substeps")) << notice;
+  EXPECT_FALSE(contains(notice, "gains energy")) << notice;
+  EXPECT_EQ(sim.advance(1.0), RunStatus::ok) << sim.divergence_reason();
+  EXPECT_EQ(sim.check_now(), RunStatus::ok);
+
+  EXPECT_EQ(live.apply(SetParameter{"dt", 1e-4}), "");
   EXPECT_EQ(live.stability_notice(), "");
+
+  EXPECT_EQ(live.apply(SetParameter{"viscosity", 0}), "");
+  notice = live.stability_notice();
+  EXPECT_TRUE(contains(notice, "explicit_euler gains energy")) << notice;
+  EXPECT_TRUE(contains(notice, "every step")) << notice;
 }
 
 // The live step budget: a cloth whose stable step is a ten-millionth of a

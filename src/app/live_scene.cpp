@@ -357,10 +357,16 @@ std::string LiveScene::stability_notice() {
   const long substeps = sim.substeps();
   const double step = s.adaptive ? sim.step_cap() : s.dt / static_cast<double>(substeps);
   if (s.integrator == IntegratorKind::explicit_euler) {
+    // With viscosity the cap and the guard keep forward Euler below its damped
+    // limit; without it no step is stable, and the user should know.
     const double limit = explicit_euler_step_bound(sim.network());
     if (step > limit) {
-      os << "explicit_euler gains energy on this cloth at steps above " << limit
-         << " s (viscosity / stiffness) and takes " << step
+      os << "explicit_euler gains energy on this cloth at ";
+      if (limit > 0.0)
+        os << "steps above " << limit << " s (viscosity / stiffness)";
+      else
+        os << "every step (a spring without viscosity)";
+      os << " and takes " << step
          << " s: expect a divergence (network, verlet, rk4 and implicit_euler do not)";
       return os.str();
     }

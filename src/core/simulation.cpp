@@ -186,8 +186,7 @@ bool Simulation::advance_ramp() {
 
 double Simulation::step_cap() {
   if (cap_ < 0) {
-    const double bound =
-        stable_step_bound(net_, integrator_->stability_limit(), bound_k_, bound_d_);
+    const double bound = integrator_step_bound(net_, *integrator_, bound_k_, bound_d_);
     cap_ = std::min(settings_.dt, settings_.adaptive_settings.safety * bound);
   }
   return cap_;

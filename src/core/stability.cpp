@@ -55,4 +55,12 @@ double explicit_euler_step_bound(const ClothNetwork& net) {
   return bound;
 }
 
+double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
+                             std::vector<double>& k_sum, std::vector<double>& d_sum) {
+  const double bound = stable_step_bound(net, integrator.stability_limit(), k_sum, d_sum);
+  if (integrator.kind() != IntegratorKind::explicit_euler) return bound;
+  const double damped = explicit_euler_step_bound(net);
+  return damped > 0.0 ? std::min(bound, damped) : bound;
+}
+
 }  // namespace neurocloth

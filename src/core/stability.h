@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cloth_network.h"
+#include "integrator.h"
 
 namespace neurocloth {
 
@@ -24,8 +25,15 @@ double stable_step_bound(const ClothNetwork& net, double stability_limit,
 // is stable while h < gamma / omega^2 for every mode, which for damping along
 // the springs is h < d_s / (k_s max_slope) (exact when every spring has the
 // same ratio), and h < 2 / gamma_i for the overdamped ones. This returns that
-// step: 0 when some stiff spring has no damping. Measured in docs/stability.md;
-// the adaptive cap does not use it (see there).
+// step: 0 when some stiff spring has no damping. Measured in docs/stability.md.
 double explicit_euler_step_bound(const ClothNetwork& net);
+
+// The step the adaptive cap and the run-time guard scale by `safety`: the
+// Gershgorin bound at the integrator's limit, and for forward Euler also its
+// damped bound above. Where forward Euler has none (a spring without damping:
+// no step is stable for ever) the Gershgorin bound is kept, so the step stays
+// finite, and LiveScene::stability_notice() says a divergence is coming.
+double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
+                             std::vector<double>& k_sum, std::vector<double>& d_sum);
 
 }  // namespace neurocloth
