@@ -298,6 +298,12 @@ TEST(SceneFields, ViscosityMustNotBeNegative) {
   expect_grid_error(with("\"viscosity\": 0.05", "\"viscosity\": -0.1"), "material.viscosity", 8);
 }
 
+// The "friction < 0" case: a collider's friction comes from the material.
+TEST(SceneFields, FrictionMustNotBeNegative) {
+  expect_grid_error(with("\"viscosity\": 0.05", "\"viscosity\": 0.05, \"friction\": -0.1"),
+                    "material.friction", 8);
+}
+
 TEST(SceneFields, TimeStepMustBePositive) {
   expect_grid_error(with("\"dt\": 0.001", "\"dt\": 0"), "solver.dt", 10);
   expect_grid_error(with("\"dt\": 0.001", "\"dt\": -0.001"), "solver.dt", 10);

@@ -57,8 +57,16 @@ class NodeArrays {
     return *this;
   }
   std::size_t size() const { return n_; }
+  // Bytes held (0 for an empty block: a buffer a scene does not need costs nothing).
+  std::size_t allocated_bytes() const { return storage_.capacity() * sizeof(double); }
   void resize(std::size_t n) {
     n_ = n;
+    if (n == 0) {
+      std::vector<double>().swap(storage_);
+      start_ = stride_ = 0;
+      bind();
+      return;
+    }
     // Each array is padded to a cache line plus 9 lines, so consecutive arrays
     // fall 576 bytes apart modulo 4 KiB; blocks start at a rotating offset.
     stride_ = (n + 7) / 8 * 8 + 72;

@@ -247,6 +247,11 @@ void Simulation::constrain(const StepStart& before, ClothState& after, double h)
   }
 }
 
+std::size_t Simulation::module_overhead_bytes() const {
+  return net_.force_modules.capacity() * sizeof(net_.force_modules[0]) +
+         constraints_.capacity() * sizeof(constraints_[0]) + start_.allocated_bytes();
+}
+
 std::vector<ModuleReport> Simulation::module_reports() const {
   std::vector<ModuleReport> out;
   auto add = [&](const SceneModule& m) {

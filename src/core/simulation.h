@@ -112,6 +112,10 @@ class Simulation {
   // The active modules (force modules first, then constraints in run order).
   std::vector<ModuleReport> module_reports() const;
   std::size_t module_count() const { return net_.force_modules.size() + constraints_.size(); }
+  // What the simulation itself holds for modules, besides each module's own
+  // state_bytes: the module lists and the step-start buffer constraints read.
+  // 0 for a scene that declares none.
+  std::size_t module_overhead_bytes() const;
 
   void set_observer(std::function<void(const StepEvent&)> observer) {
     observer_ = std::move(observer);
