@@ -5,10 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <variant>
+#include <vector>
+
 #include "asset_paths.h"
 #include "input_error.h"
 #include "scene.h"
 #include "tradeoff/accuracy_choice.h"
+#include "ui_requests.h"
 
 namespace neurocloth {
 namespace {
@@ -60,6 +65,48 @@ TEST(AccuracyControl, ASceneWithoutATradeSaysHowToMakeOne) {
   const AccuracyTrade t = load_accuracy_trade("/nowhere/no_such_scene.json");
   EXPECT_FALSE(t.table.has_value());
   EXPECT_NE(t.note.find("tradeoff"), std::string::npos) << t.note;
+}
+
+// The slider's request, as the panel and a script's "set accuracy" make it:
+// one SetSolver with the pick, mirrored in the panel's values.
+TEST(AccuracyControl, ARequestPostsThePickAsOneSetSolverAndMirrorsIt) {
+  const SceneInfo scene(load_scene(hanging()));
+  UiValues values;
+  std::vector<SimCommand> posted;
+  const CommandSink sink = [&](SimCommand c) { posted.push_back(std::move(c)); };
+  EXPECT_EQ(request_accuracy(scene, values, sink, 0.01), "");
+  ASSERT_EQ(posted.size(), 1u);
+  const SetSolver& sent = std::get<SetSolver>(posted[0]);
+  const AccuracyPick pick = pick_for_accuracy(scene.trade(), 0.01, scene.solver());
+  EXPECT_EQ(sent.integrator, pick.command.integrator);
+  EXPECT_EQ(sent.dt, pick.command.dt);
+  EXPECT_EQ(sent.adaptive, pick.command.adaptive);
+  EXPECT_EQ(sent.safety, pick.command.safety);
+  EXPECT_EQ(kAllIntegrators[values.integrator], sent.integrator);
+  EXPECT_EQ(values.dt, sent.dt);
+  EXPECT_EQ(values.adaptive, sent.adaptive);
+  EXPECT_FLOAT_EQ(values.accuracy, 0.01f);
+  EXPECT_EQ(values.accuracy_pick, pick.description);
+}
+
+TEST(AccuracyControl, ARequestTheTradeCannotMeetIsRefusedAndNothingPosted) {
+  const SceneInfo scene(load_scene(hanging()));
+  UiValues values;
+  const UiValues before = values;
+  std::vector<SimCommand> posted;
+  const CommandSink sink = [&](SimCommand c) { posted.push_back(std::move(c)); };
+  std::string refusal = request_accuracy(scene, values, sink, scene.trade().finest / 100);
+  EXPECT_NE(refusal.find("hanging.csv"), std::string::npos) << refusal;
+  refusal = request_accuracy(scene, values, sink, std::nan(""));
+  EXPECT_NE(refusal.find("accuracy = nan refused"), std::string::npos) << refusal;
+  EXPECT_NE(request_accuracy(scene, values, sink, -0.1), "");
+
+  const SceneInfo untraded(load_scene(assets_directory() + "/scenes/chain.json"));
+  refusal = request_accuracy(untraded, values, sink, 0.01);
+  EXPECT_NE(refusal.find("tradeoff"), std::string::npos) << refusal;
+  EXPECT_TRUE(posted.empty());
+  EXPECT_EQ(values.dt, before.dt);
+  EXPECT_EQ(values.accuracy, before.accuracy);
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include "renderer.h"
 #include "scene.h"
 #include "simulation.h"
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/trade_csv.h"
 #include "viewer_fixture.h"
 
 namespace neurocloth::viewer_test {
@@ -158,6 +160,31 @@ TEST_F(Viewer, ASetEventReachesTheSimulationAndAnOutOfRangeOneIsRefused) {
   const std::string refusal = report["sets"][1]["refusal"];
   EXPECT_NE(refusal.find("valid range"), std::string::npos) << refusal;
   ASSERT_FALSE(report["errors"].empty()) << "the refusal is shown as an error line";
+}
+
+// The Solver panel's accuracy slider, driven as a script's "set": the
+// simulation runs with the setting the scene's measured trade picks (read from
+// its status), and an accuracy finer than the trade vouches for is refused.
+TEST_F(Viewer, AnAccuracyRequestRunsThePickedSettingAndATooFineOneIsRefused) {
+  SKIP_WITHOUT_XVFB();
+  const Scene scene = load_scene(scene_asset("hanging"));
+  const std::string trade_path = committed_trade_path(scene.path);
+  const AccuracyChoice expected =
+      choose_for_accuracy(read_trade_csv(trade_path), trade_path, 0.01, scene.solver);
+  const json report =
+      session(scene_asset("hanging"),
+              {{{"t", 0.2}, {"type", "set"}, {"name", "accuracy"}, {"value", 0.01}},
+               {{"t", 0.3}, {"type", "set"}, {"name", "accuracy"}, {"value", 1e-12}},
+               quit(0.8)});
+  ASSERT_EQ(report["sets"].size(), 2u);
+  EXPECT_TRUE(report["sets"][0]["accepted"].get<bool>()) << report["sets"].dump();
+  EXPECT_EQ(report["status"]["integrator"], to_string(expected.settings.integrator));
+  EXPECT_EQ(report["status"]["dt"].get<double>(), expected.settings.dt);
+  EXPECT_EQ(report["status"]["adaptive"].get<bool>(), expected.settings.adaptive);
+  EXPECT_FALSE(report["sets"][1]["accepted"].get<bool>());
+  const std::string refusal = report["sets"][1]["refusal"];
+  EXPECT_NE(refusal.find("hanging.csv"), std::string::npos) << refusal;
+  EXPECT_EQ(report["status"]["run"], "ok");
 }
 
 TEST_F(Viewer, ALinguisticInputReachesTheSimulation) {

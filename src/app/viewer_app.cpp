@@ -166,7 +166,10 @@ void ViewerApp::note_errors(double elapsed, const SimulationStatus& status) {
 }
 
 void ViewerApp::set(double t, const std::string& name, double value) {
-  const std::string refusal = request_parameter(scene_info_, values_, sink_, name, value);
+  // "accuracy" is the Solver panel's slider, not a simulation parameter.
+  const std::string refusal = name == "accuracy"
+                                  ? request_accuracy(scene_info_, values_, sink_, value)
+                                  : request_parameter(scene_info_, values_, sink_, name, value);
   if (!refusal.empty()) show_error(t, refusal);
   report_.parameter(t, name, value, refusal);
 }

@@ -5,9 +5,9 @@
 #include <iterator>
 #include <vector>
 
-#include "input_error.h"
 #include "panels.h"
 #include "parameter_input.h"
+#include "ui_requests.h"
 
 namespace neurocloth {
 
@@ -46,16 +46,9 @@ void accuracy(PanelContext& ctx) {
                          ImGuiSliderFlags_NoRoundToFormat);
   v.accuracy = percent / 100;
   if (ImGui::IsItemDeactivatedAfterEdit()) {
-    try {
-      const AccuracyPick pick = pick_for_accuracy(trade, v.accuracy, ctx.scene.solver());
-      ctx.post(pick.command);
-      for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
-        if (kAllIntegrators[i] == pick.command.integrator) v.integrator = static_cast<int>(i);
-      v.adaptive = pick.command.adaptive;
-      v.dt = pick.command.dt;
-      v.accuracy_pick = pick.description;
-    } catch (const InputError& e) {
-      ctx.messages.error = e.what();
+    const std::string refusal = request_accuracy(ctx.scene, v, ctx.post, v.accuracy);
+    if (!refusal.empty()) {
+      ctx.messages.error = refusal;
       v.accuracy_pick.clear();
     }
   }

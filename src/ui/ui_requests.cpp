@@ -3,6 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <iterator>
+
+#include "accuracy_control.h"
+#include "input_error.h"
 
 namespace neurocloth {
 
@@ -34,6 +38,28 @@ std::string request_parameter(const SceneInfo& scene, UiValues& values, const Co
     return name + " = " + number(value) + " refused: valid range " + range_text(*range);
   values.assign(name, value);
   post(SetParameter{name, value});
+  return "";
+}
+
+std::string request_accuracy(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                             double accuracy) {
+  const AccuracyTrade& trade = scene.trade();
+  if (!trade.table) return "accuracy: " + trade.note;
+  if (!std::isfinite(accuracy) || accuracy <= 0)
+    return "accuracy = " + number(accuracy) + " refused: a fraction of the cloth's size > 0";
+  AccuracyPick pick;
+  try {
+    pick = pick_for_accuracy(trade, accuracy, scene.solver());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  post(pick.command);
+  values.accuracy = static_cast<float>(accuracy);
+  for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+    if (kAllIntegrators[i] == pick.command.integrator) values.integrator = static_cast<int>(i);
+  values.adaptive = pick.command.adaptive;
+  values.dt = pick.command.dt;
+  values.accuracy_pick = pick.description;
   return "";
 }
 

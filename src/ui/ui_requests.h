@@ -16,6 +16,14 @@ namespace neurocloth {
 std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
                               const std::string& name, double value);
 
+// The accuracy slider's request (and a script's "set" of "accuracy"): the
+// cheapest setting the scene's measured trade says keeps the position error
+// within `accuracy` (a fraction of the cloth's size), posted as one SetSolver
+// and mirrored in `values`. Returns why not when the scene has no trade or the
+// trade cannot vouch for that accuracy (naming the trade file).
+std::string request_accuracy(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                             double accuracy);
+
 // Reads the scene file here (so a bad one is named at once), then posts
 // LoadScene; the simulation loads it itself and keeps the running scene on
 // failure. Returns the error, or "" when posted.
