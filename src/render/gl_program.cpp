@@ -29,6 +29,17 @@ std::string with_snippets(const std::string& path, const std::string& source,
   return out;
 }
 
+// The driver's message for a shader (glGetShaderiv, glGetShaderInfoLog) or a
+// program (glGetProgramiv, glGetProgramInfoLog): the same two calls for each.
+template <typename GetParameter, typename GetLog>
+std::string info_log(GLuint object, GetParameter get_parameter, GetLog get_log) {
+  GLint length = 0;
+  get_parameter(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(std::size_t(length > 0 ? length : 1), '\0');
+  get_log(object, GLsizei(log.size()), nullptr, log.data());
+  return log.c_str();  // up to the terminating zero the driver wrote
+}
+
 GLuint compile(GLenum stage, const std::string& path, const std::string& source) {
   const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
@@ -37,12 +48,9 @@ GLuint compile(GLenum stage, const std::string& path, const std::string& source)
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(std::size_t(length > 0 ? length : 1), '\0');
-    glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    throw std::runtime_error(path + ": does not compile: " + log.c_str());
+    throw std::runtime_error(path + ": does not compile: " + log);
   }
   return shader;
 }
@@ -76,12 +84,9 @@ GlProgram::GlProgram(const std::string& shader_dir, const std::string& vertex_fi
   GLint ok = GL_FALSE;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
-    std::string log(std::size_t(length > 0 ? length : 1), '\0');
-    glGetProgramInfoLog(id_, GLsizei(log.size()), nullptr, log.data());
+    const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(id_);
-    throw std::runtime_error(shader_dir + "/" + name_ + ": does not link: " + log.c_str());
+    throw std::runtime_error(shader_dir + "/" + name_ + ": does not link: " + log);
   }
 }
 

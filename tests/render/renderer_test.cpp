@@ -7,9 +7,12 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "cloth_shading.h"
+#include "gl_program.h"
 #include "reference_image.h"
 #include "snapshot_framing.h"
 
@@ -287,6 +290,39 @@ TEST(Renderer, AMissingShaderIsNamed) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/shaders/"), std::string::npos) << e.what();
   }
+}
+
+// A shader the driver refuses: the message names the file and carries the
+// driver's own log (read for the shader when it does not compile, for the
+// program when it does not link).
+TEST(Renderer, ABrokenShaderIsNamedWithTheDriversMessage) {
+  OsmesaContext context(16, 16);
+  const std::filesystem::path dir = std::filesystem::path(NEUROCLOTH_TEST_TMP) / "broken_shaders";
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const char* name, const char* text) {
+    std::ofstream(dir / name, std::ios::binary | std::ios::trunc) << text;
+  };
+  write("ok.vert", "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n");
+  write("bad.vert", "#version 330 core\nvoid main() { gl_Position = vec4(undeclared_thing); }\n");
+  write("ok.frag", "#version 330 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+  // Each stage compiles alone; the program has no entry point for its fragments.
+  write("nomain.frag", "#version 330 core\nout vec4 c;\nvoid helper() { c = vec4(1.0); }\n");
+  const auto message = [&](const char* vertex, const char* fragment) -> std::string {
+    try {
+      GlProgram program(dir.string(), vertex, fragment);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(message("ok.vert", "ok.frag"), "");  // the oracle: a sound pair builds
+  const std::string compile = message("bad.vert", "ok.frag");
+  EXPECT_NE(compile.find("bad.vert: does not compile: "), std::string::npos) << compile;
+  EXPECT_NE(compile.find("undeclared_thing"), std::string::npos) << compile;
+  const std::string link = message("ok.vert", "nomain.frag");
+  EXPECT_NE(link.find("does not link: "), std::string::npos) << link;
+  const std::size_t log = link.find("does not link: ");
+  EXPECT_NE(link.find("main", log), std::string::npos) << link;  // in the driver's log
 }
 
 // Linking libGL into a headless program binds the GL 1.x calls to glvnd's
