@@ -1,4 +1,6 @@
 // Runs neurocloth-cli as a user would: a real process, real files, exit codes.
+#include <algorithm>
+
 #include "cli_fixture.h"
 
 namespace neurocloth::cli_test {
@@ -357,6 +359,19 @@ TEST_F(Cli, BenchRejectsTinySize) {
   const Outcome r = run({"bench", "--size", "1", "--steps", "5", "--repeat", "1", "--json"});
   EXPECT_EQ(r.code, kInputError);
   EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+}
+
+// A size or a count that would take the machine's memory or run for ever is
+// refused before anything is built (--size 100000 is 1e10 nodes).
+TEST_F(Cli, BenchRejectsSizesAndCountsBeyondItsLimits) {
+  for (const auto& [option, value] :
+       {std::pair{"--size", "100000"}, {"--steps", "2147483647"}, {"--repeat", "2147483647"}}) {
+    std::vector<std::string> args = {"bench", "--size", "8", "--steps", "5", "--repeat", "1"};
+    *(std::find(args.begin(), args.end(), option) + 1) = value;
+    const Outcome r = run(args, 60);
+    EXPECT_EQ(r.code, kInputError) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // `neurocloth-cli tradeoff` and `simulate --accuracy`, run as a user would: a
 // real process, real files, exit codes. Small scenes and short runs, so it is fast.
+#include <algorithm>
+
 #include "cli_fixture.h"
 #include "tradeoff/trade_csv.h"
 
@@ -135,10 +137,16 @@ TEST_F(Cli, AccuracyMeasuresATradeWhenNoneIsCommittedAndSaysSo) {
 TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   const std::string report = (out_dir() / "report").string();
   expect_input_error(quick_tradeoff(dir_.string() + "/missing.json", report), {"missing.json"});
-  for (const char* seconds : {"0", "-1", "inf"}) {
+  // A trade runs the scene dozens of times: 1e300 s would never end (issue 11).
+  for (const char* seconds : {"0", "-1", "inf", "1e300"}) {
     std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
     args[3] = seconds;
-    expect_input_error(args, {"--seconds", "must be a finite number > 0"});
+    expect_input_error(args, {"--seconds", "must be in (0, 3600]"});
+  }
+  for (const auto& [option, value] : {std::pair{"--samples", "2147483647"}, {"--levels", "1000"}}) {
+    std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
+    *(std::find(args.begin(), args.end(), option) + 1) = value;
+    expect_input_error(args, {option, "must be in [1, "});
   }
   std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--methods", "network,leapfrog"});

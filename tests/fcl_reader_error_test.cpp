@@ -216,6 +216,14 @@ const ErrorCase kErrors[] = {
      "FUNCTION_BLOCK cloth", "(*", "comment '(*' is never closed by '*)'"},
     {"StrayCharacter", {{"AND : MIN;", "AND : MIN; #"}},
      "RULEBLOCK rules", "#", "unexpected character '#'"},
+    // Hostile depth: each '(' and NOT is a level of recursion (here, in
+    // inference and in the writer); 32 are read (fcl_reader_test.cpp), 33 not.
+    {"NestedTooDeep", {{"IF mass IS heavy", "IF (((((((((((((((((((((((((((((((((mass IS heavy)))))))))))))))))))))))))))))))))"}},
+     "RULE 1", "(mass IS heavy", "the condition nests '(' and NOT more than 32 levels deep"},
+    {"NegatedTooDeep", {{"IF mass IS heavy", "IF NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT mass IS heavy"}},
+     "RULE 1", "NOT mass IS heavy", "the condition nests '(' and NOT more than 32 levels deep"},
+    {"NumberBeyondTheEnginesRange", {{"TERM high := trian 100 500 1000", "TERM high := trian 100 500 1e16"}},
+     "DEFUZZIFY stiffness", "1e16", "number '1e16' is beyond +-1e15"},
 };
 // clang-format on
 

@@ -148,6 +148,23 @@ TEST(FclReader, BuildsTheConditionTreeAsWritten) {
   EXPECT_TRUE(is_clause(c, 0, 1));
 }
 
+// '(' and NOT nest up to 32 levels (deeper is refused: fcl_reader_error_test.cpp).
+TEST(FclReader, ReadsAConditionNestedToTheLimit) {
+  std::string rule = "mass IS heavy";
+  for (int level = 0; level < 32; ++level)
+    rule = level % 2 ? "NOT " + rule : "(" + rule + ")";
+  const Condition c = parse_fcl(edited({{"IF mass IS heavy THEN", "IF " + rule + " THEN"}}), kPath)
+                          .blocks[0]
+                          .rules[0]
+                          .condition;
+  int depth = 0;
+  const Condition* at = &c;
+  for (; at->kind == Kind::negation; at = &at->children[0])
+    ++depth;
+  EXPECT_EQ(depth, 16);  // the 16 parentheses around single clauses add no node
+  EXPECT_TRUE(is_clause(*at, 0, 1));
+}
+
 TEST(FclReader, RulesWithSeveralConsequentsAndBlocks) {
   const std::string text = edited({
       {"THEN stiffness IS high;", "THEN stiffness IS high, damping IS none WITH 1;"},

@@ -133,5 +133,31 @@ TEST(JsonLocator, JsonFieldsErrorsCarryTheLocatedPosition) {
   }
 }
 
+// JSON leaves a repeated key undefined and the parser keeps the last one
+// silently: the locator finds the second, so a reader can name it.
+TEST(JsonLocator, FindsTheFirstKeyWrittenTwiceInOneObject) {
+  EXPECT_TRUE(JsonLocator(kNested).duplicate().field.empty());
+  const JsonLocator at("{\"a\": {\"b\": 1,\n  \"c\": 2, \"b\": 3}, \"d\": {\"b\": 4}, \"d\": 5}");
+  EXPECT_EQ(at.duplicate().field, "a.b");
+  EXPECT_EQ(at.duplicate().line, 2);
+  EXPECT_EQ(at.duplicate().column, 11);
+  // The same key in two objects is no duplicate.
+  EXPECT_TRUE(JsonLocator("[{\"a\": 1}, {\"a\": 2}]").duplicate().field.empty());
+  // Escapes count as the parser decodes them: "\u0061" is "a".
+  EXPECT_EQ(JsonLocator("{\"a\": 1, \"\\u0061\": 2}").duplicate().field, "a");
+}
+
+TEST(JsonFields, ADuplicateKeyIsAnInputErrorWithItsLine) {
+  try {
+    JsonFields("{\n  \"x\": 1,\n  \"x\": 2\n}", "dup.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "dup.json");
+    EXPECT_EQ(e.field(), "x");
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(e.message().find("twice"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace neurocloth

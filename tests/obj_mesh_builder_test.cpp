@@ -223,5 +223,77 @@ TEST(ObjMesh, NonFiniteVertex) {
   EXPECT_EQ(e->field(), "v");
 }
 
+// tinyobjloader reads a coordinate it cannot parse as 0, silently: each is
+// checked first and refused with its line (a NaN vertex ran as 0 before).
+TEST(ObjMesh, ACoordinateThatIsNotAFiniteNumberIsNamedWithItsLine) {
+  for (const char* bad : {"v nan 0 0", "v 1 inf 0", "v 0 0 0x1p3", "v 1 2", "v 1e999 0 0",
+                          "v 1.5. 0 0", "v -e5 0 0"}) {
+    SCOPED_TRACE(bad);
+    const auto e = build_error(temp_obj(
+        "bad.obj", std::string("# from a tool\nv 0 0 0\n") + bad + "\nv 0 1 0\nf 1 2 3\n"));
+    ASSERT_TRUE(e);
+    EXPECT_EQ(e->field(), "v");
+    EXPECT_EQ(e->line(), 3);
+    EXPECT_NE(e->message().find("vertex 2"), std::string::npos) << e->what();
+  }
+  // What tools write: signs, exponents, a w, a colour, tabs, CRLF.
+  const ClothTopology t = build(
+      temp_obj("good.obj",
+               "v -1.000000 +2.5e-1 3E2 1.0\r\nv\t1 0 0 0.5 0.5 0.5\r\nv .5 1. 0\r\nf 1 2 3\r\n"));
+  ASSERT_EQ(t.rest_positions.size(), 3u);
+  EXPECT_EQ(t.rest_positions[0], Vec3(-1, 0.25, 300));
+  EXPECT_EQ(t.rest_positions[2], Vec3(0.5, 1, 0));
+}
+
+// Triangulating a polygon costs its corners; past 256 a face is refused
+// before anything is parsed (60,000 corners took 15 s before: issue 11).
+TEST(ObjMesh, AFaceWithTooManyCornersIsRefusedWithItsLine) {
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf";
+  for (int i = 0; i < 60000; ++i)
+    obj += " 1";
+  const auto e = build_error(temp_obj("long.obj", obj + "\n"));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field(), "f");
+  EXPECT_EQ(e->line(), 5);
+  EXPECT_NE(e->message().find("more than 256 corners"), std::string::npos) << e->what();
+}
+
+TEST(ObjMesh, AFaceWithFewerThanThreeCornersIsRefusedWithItsLine) {
+  const auto e = build_error(temp_obj("short.obj", "v 0 0 0\nv 1 0 0\r\nv 0 1 0\rf 1 2\n"));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 4);  // \n, \r\n and \r each end one line
+  EXPECT_NE(e->message().find("at least 3 corners"), std::string::npos) << e->what();
+}
+
+// Errors found after parsing name the face's line, across groups and objects.
+TEST(ObjMesh, FaceErrorsNameTheirLine) {
+  const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\no first\nf 1 2 3\ng second\n";
+  auto e = build_error(temp_obj("repeat.obj", head + "f 2 4 3\nf 2 4 2\n"));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 9);
+  EXPECT_NE(e->message().find("degenerate"), std::string::npos) << e->what();
+  e = build_error(temp_obj("missing.obj", head + "f 2 4 3\nf 2 4 9\n"));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 9);
+  EXPECT_NE(e->message().find("vertex 9"), std::string::npos) << e->what();
+}
+
+// A polygon beyond a quad becomes a fan from its first corner.
+TEST(ObjMesh, APentagonBecomesThreeTriangles) {
+  const ClothTopology t = build(temp_obj(
+      "pentagon.obj", "v 0 0 0\nv 1 0 0\nv 1.3 1 0\nv 0.5 1.6 0\nv -0.3 1 0\nf 1 2 3 4 5\n"));
+  ASSERT_EQ(t.triangles.size(), 3u);
+  EXPECT_EQ(t.triangles[2], (std::array<std::int32_t, 3>{0, 3, 4}));
+  EXPECT_EQ(count(t, SpringFamily::structural), 7);  // 5 sides, 2 diagonals
+}
+
+// /dev/zero never ends: read up to the limit and refused, not read until memory runs out.
+TEST(ObjMesh, AnEndlessFileIsRefusedBySize) {
+  const auto e = build_error("/dev/zero");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->file(), "/dev/zero");
+  EXPECT_NE(e->message().find("larger than"), std::string::npos) << e->what();
+}
+
 }  // namespace
 }  // namespace neurocloth

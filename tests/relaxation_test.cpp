@@ -67,5 +67,38 @@ TEST(Relaxation, ExternalForcesCount) {
   EXPECT_NEAR(F.at(9).y() - net.mass(9) * 9.81, 0.0, 1e-9);
 }
 
+// Nothing free, nothing to relax: converged as it is, with no step (it said
+// "did NOT converge ... last step inf m" before: issue 11).
+TEST(Relaxation, AClothWithEveryNodePinnedIsConvergedAsItIs) {
+  const Scene scene = test::asset_scene("hanging");
+  ClothNetwork net = scene.build_network();
+  for (std::size_t i = 0; i < net.node_count(); ++i)
+    net.set_pinned(i, true);
+  ClothState state = scene.initial_state();
+  const ClothState before = state;
+  const RelaxReport r = relax(net, state);
+  EXPECT_TRUE(r.converged);
+  EXPECT_EQ(r.free_nodes, 0u);
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_EQ(r.accepted_steps, 0);
+  EXPECT_EQ(r.last_step, 0.0);
+  EXPECT_EQ(r.residual_force, 0.0);
+  EXPECT_EQ(test::state_hash(state), test::state_hash(before));
+}
+
+// A report never holds an infinite step, even when no step was accepted.
+TEST(Relaxation, ANonConvergedRunReportsFiniteNumbers) {
+  const Scene scene = test::asset_scene("hanging");
+  const ClothNetwork net = scene.build_network();
+  ClothState state = scene.initial_state();
+  RelaxSettings settings;
+  settings.max_iterations = 1;
+  const RelaxReport r = relax(net, state, settings);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(std::isfinite(r.last_step));
+  EXPECT_TRUE(std::isfinite(r.residual_force));
+  EXPECT_GT(r.free_nodes, 0u);
+}
+
 }  // namespace
 }  // namespace neurocloth

@@ -219,17 +219,18 @@ TEST(SceneModulesInput, UnknownType) {
 }
 
 TEST(SceneModulesInput, NegativeRadiusOrSize) {
+  // Sizes have physical limits (physical_limits.h): the message gives the range.
   expect_module_error(R"(    {"type": "sphere", "center": [0, 0, 0], "radius": -1})",
-                      "modules[0].radius", "must be > 0");
+                      "modules[0].radius", "must be in [0.0001, 20000] m (got -1)");
   expect_module_error(R"(    {"type": "capsule", "a": [0, 0, 0], "b": [1, 0, 0], "radius": 0})",
-                      "modules[0].radius", "must be > 0");
+                      "modules[0].radius", "must be in [0.0001, 20000] m (got 0)");
   expect_module_error(R"(    {"type": "box", "center": [0, 0, 0], "size": [1, -2, 1]})",
-                      "modules[0].size", "every side must be > 0");
+                      "modules[0].size[1]", "must be in [0.0001, 20000] m (got -2)");
 }
 
 TEST(SceneModulesInput, NegativeFriction) {
   expect_module_error(R"(    {"type": "plane", "friction": -0.1})", "modules[0].friction",
-                      "must be >= 0");
+                      "must be in [0, 10] (got -0.1)");
   expect_module_error(R"(    {"type": "plane", "friction": 0.5, "static_friction": 0.2})",
                       "modules[0].static_friction", "must be >= friction");
 }
@@ -252,9 +253,9 @@ TEST(SceneModulesInput, MissingAndUnknownKeys) {
   expect_module_error(R"(    {"type": "plane", "normal": [0, 0, 0]})", "modules[0].normal",
                       "must not be zero");
   expect_module_error(R"(    {"type": "strain_limit", "max_stretch": 0.9})",
-                      "modules[0].max_stretch", "must be >= 1");
+                      "modules[0].max_stretch", "must be in [1, 100] (got 0.9)");
   expect_module_error(R"(    {"type": "wind", "velocity": [1, 0, 0], "gust": {"period": 0}})",
-                      "modules[0].gust.period", "must be > 0");
+                      "modules[0].gust.period", "must be in [0.001, 1e+06] s (got 0)");
   expect_module_error(
       R"(    {"type": "pin_motion", "nodes": [[9, 9]], "amplitude": [1, 0, 0], "frequency": 1})",
       "modules[0].nodes[0]", "outside the 4x4 grid");

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <set>
 #include <string>
@@ -160,6 +162,64 @@ TEST(SceneJson, NumberOverflowIsAnInputError) {
   ASSERT_TRUE(e);
   EXPECT_EQ(e->file(), path);
   EXPECT_NE(std::string(e->what()).find(path), std::string::npos) << e->what();
+}
+
+// Every number a scene gives a simulation has physical limits
+// (physical_limits.h): a value outside is refused, naming its field, its
+// line and what the limit means. Each case edits one shipped scene.
+TEST(SceneLimits, EveryLimitNamesItsFieldLineAndMeaning) {
+  const struct {
+    const char* scene;
+    const char* from;
+    const char* to;
+    const char* field;
+    const char* meaning;  // a part of the limit's reason
+  } cases[] = {
+      {"hanging", "\"spacing\": 0.05", "\"spacing\": 1e-9", "cloth.grid.spacing", "0.1 mm"},
+      {"hanging", "\"row_direction\": [0, 0, 1]", "\"row_direction\": [0, 0, 1e300]",
+       "cloth.grid.row_direction[2]", "direction"},
+      {"hanging", "\"spring_constant\": 200.0", "\"spring_constant\": -1",
+       "material.spring_constant", "1e9 N/m"},
+      {"hanging", "\"viscosity\": 0.05", "\"viscosity\": 1e7", "material.viscosity", "1e6"},
+      {"hanging", "\"friction\": 0.1", "\"friction\": 11", "material.friction", "typo"},
+      {"hanging", "\"node_mass\": 0.01", "\"node_mass\": 1e5", "material.node_mass", "tonnes"},
+      {"hanging", "\"dt\": 0.001", "\"dt\": 11", "solver.dt", "microsecond"},
+      {"table_drape", "\"size\": [0.8, 0.75, 0.8]", "\"size\": [0.8, 1e300, 0.8]",
+       "modules[0].size[1]", "20 km"},
+      {"table_drape", "\"center\": [0, 0.375, 0]", "\"center\": [0, 0.375, -1e5]",
+       "modules[0].center[2]", "10 km"},
+      {"table_drape", "\"thickness\": 0.005", "\"thickness\": 2", "modules[0].thickness", "1 m"},
+      {"sphere_drop", "\"radius\": 0.35", "\"radius\": 0", "modules[0].radius", "0.1 mm"},
+      {"sphere_drop", "\"normal\": [0, 1, 0]", "\"normal\": [0, 1e300, 0]", "modules[1].normal[1]",
+       "direction"},
+      {"sphere_drop", "\"thickness\": 0.01", "\"thickness\": 1e-300", "modules[2].thickness",
+       "0.01 mm"},
+      {"flag", "\"velocity\": [6.0, 0.0, 0.8]", "\"velocity\": [6e5, 0.0, 0.8]",
+       "modules[0].velocity[0]", "sound"},
+      {"flag", "\"period\": 1.5", "\"period\": 1e-300", "modules[0].gust.period", "1 ms"},
+      {"flag", "\"amplitude\": 0.3", "\"amplitude\": 1e300", "modules[0].gust.amplitude",
+       "ten times"},
+      {"curtain", "\"max_stretch\": 1.1", "\"max_stretch\": 1e300", "modules[1].max_stretch",
+       "hundred"},
+      {"curtain", "\"rate\": 0.3", "\"rate\": 1e300", "modules[2].rate", "0.1 ms"},
+      {"curtain", "\"t\": 4.5", "\"t\": 1e300", "modules[0].keyframes[4].t", "1e6 s"},
+      {"curtain", "\"offset\": [0.6, 0, 0] }, { \"t\": 3.0",
+       "\"offset\": [1e300, 0, 0] }, { \"t\": 3.0", "modules[0].keyframes[2].offset[0]", "10 km"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.scene) + ": " + c.to);
+    const std::string asset = assets_directory() + "/scenes/" + c.scene + ".json";
+    std::ifstream in(asset);
+    const std::string original{std::istreambuf_iterator<char>(in), {}};
+    const std::string text = with(c.from, c.to, original);
+    const int line =
+        1 + static_cast<int>(std::count(text.begin(), text.begin() + text.find(c.to), '\n'));
+    const std::string path = scratch_path(std::string(c.scene) + ".json");
+    const auto e = parse_error(text, path);
+    if (!e) continue;
+    expect_names(*e, path, c.field, line);
+    EXPECT_NE(e->message().find(c.meaning), std::string::npos) << e->what();
+  }
 }
 
 TEST(SceneJson, RootMustBeAnObject) {

@@ -33,9 +33,13 @@ Scene bench_scene(int size, IntegratorKind integrator) {
 }  // namespace
 
 int run_bench(const BenchOptions& o) {
-  if (o.size < 2) throw InputError("command line", "--size", "must be >= 2");
-  if (o.steps < 1) throw InputError("command line", "--steps", "must be >= 1");
-  if (o.repeat < 1) throw InputError("command line", "--repeat", "must be >= 1");
+  // The largest grid a scene may declare (4 million nodes); runs a person waits for.
+  if (o.size < 2 || o.size > 2000)
+    throw InputError("command line", "--size", "must be in [2, 2000] (at most 4 million nodes)");
+  if (o.steps < 1 || o.steps > 1000000)
+    throw InputError("command line", "--steps", "must be in [1, 1000000]");
+  if (o.repeat < 1 || o.repeat > 1000)
+    throw InputError("command line", "--repeat", "must be in [1, 1000]");
   const auto kind = parse_integrator(o.integrator);
   if (!kind)
     throw InputError(

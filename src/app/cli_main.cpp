@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   auto* fixed = simulate->add_flag("--fixed-step", sim.fixed_step, "Fixed time step");
   adaptive->excludes(fixed);
   simulate->add_option("--out", sim.out, "Where to write RESULT.json")->required();
+  simulate->add_option("--progress", sim.progress,
+                       "Wall seconds between progress lines on stderr (default 2; 0: none). "
+                       "Ctrl-C ends a run and writes the state reached");
   auto* accuracy = simulate->add_option(
       "--accuracy", sim.accuracy,
       "Pick the cheapest measured setting keeping the max position error within this fraction "

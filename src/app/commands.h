@@ -2,7 +2,8 @@
 // The subcommands of neurocloth-cli. Each returns the process exit code:
 // 0 ok, 3 diverged (result still written), 4 relax did not converge (result
 // written), 5 simulate stopped early at its step budget (result written), 1 bad
-// input (nothing written).
+// input (nothing written), 130 interrupted by Ctrl-C (result written, at the
+// time reached; long_run.h).
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@ struct SimulateOptions {
   // assets/tradeoff/<scene stem>.csv, else measured first (tradeoff_command.cpp).
   std::optional<double> accuracy;
   std::optional<std::string> trade;
+  double progress = 2;  // wall seconds between progress lines on stderr; 0: none
 };
 int run_simulate(const SimulateOptions& options);
 

@@ -26,6 +26,8 @@ int run_relax(const RelaxOptions& o) {
   doc["cg_iterations"] = r.cg_iterations;
   doc["residual_force"] = r.residual_force;
   doc["last_step"] = r.last_step;
+  doc["accepted_steps"] = r.accepted_steps;
+  doc["free_nodes"] = r.free_nodes;
   doc["wall_seconds"] = wall;
   doc["nodes"] = net.node_count();
   doc["springs"] = net.spring_count();
@@ -34,11 +36,15 @@ int run_relax(const RelaxOptions& o) {
   doc["velocities"] = state_json(state, true);
   write_json_atomically(o.out, doc);
 
-  std::printf(
-      "%s: relaxation %s after %d Newton iterations (%d CG), residual force %.3g N, last step %.3g "
-      "m\n",
-      scene.name.c_str(), r.converged ? "converged" : "did NOT converge", r.iterations,
-      r.cg_iterations, r.residual_force, r.last_step);
+  if (r.free_nodes == 0)
+    std::printf("%s: nothing to relax: every node is pinned, so the cloth rests as it is\n",
+                scene.name.c_str());
+  else
+    std::printf(
+        "%s: relaxation %s after %d Newton iterations (%d CG, %d accepted), residual force %.3g "
+        "N, last step %.3g m\n",
+        scene.name.c_str(), r.converged ? "converged" : "did NOT converge", r.iterations,
+        r.cg_iterations, r.accepted_steps, r.residual_force, r.last_step);
   std::printf("  potential energy %.9g J; wrote %s\n", net.energy(state).potential(),
               o.out.c_str());
   return r.converged ? kExitOk : kExitNotConverged;

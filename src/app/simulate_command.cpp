@@ -1,4 +1,3 @@
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +6,7 @@
 
 #include "commands.h"
 #include "input_error.h"
+#include "long_run.h"
 #include "result_json.h"
 #include "scene.h"
 #include "tradeoff/accuracy_choice.h"
@@ -111,17 +111,21 @@ int run_simulate(const SimulateOptions& o) {
   if (o.adaptive) scene.solver.adaptive = true;
   if (o.fixed_step) scene.solver.adaptive = false;
 
+  if (!(o.progress >= 0) || !std::isfinite(o.progress))
+    throw InputError("command line", "--progress", "must be a finite number >= 0 (wall seconds)");
+
   Simulation sim = scene.make_simulation();
-  const auto start = std::chrono::steady_clock::now();
-  sim.advance(o.seconds);
+  const LongRunOutcome run = run_long(sim, o.seconds, {o.progress});
   sim.check_now();  // the result is checked in full, whatever the cadence
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall = run.wall_seconds;
   nlohmann::json result = simulation_result(sim, o.scene, wall);
   if (accuracy) result["accuracy"] = accuracy_json(*accuracy);
+  result["seconds_asked"] = o.seconds;
+  result["interrupted"] = run.interrupted;
   // A run the step budget stopped is healthy but short of what was asked:
   // the result says so, and so do the message and the exit code.
-  const bool stopped_early = sim.status() == RunStatus::ok && sim.budget_exhausted();
+  const bool stopped_early =
+      sim.status() == RunStatus::ok && sim.budget_exhausted() && !run.interrupted;
   result["step_budget_exhausted"] = stopped_early;
   write_json_atomically(o.out, result);
 
@@ -144,8 +148,12 @@ int run_simulate(const SimulateOptions& o) {
         "  stopped early at t = %.4g s of %.4g s: the step budget (%ld trial steps per dt) ran "
         "out; the stable step here is %.3g s (docs/stability.md)\n",
         sim.time(), o.seconds, sim.settings().step_budget, sim.step_cap());
+  if (run.interrupted)
+    std::printf("  interrupted (Ctrl-C) at t = %.6g s of %.6g s; the state reached is written\n",
+                sim.time(), o.seconds);
   std::printf("  wrote %s\n", o.out.c_str());
   if (sim.status() != RunStatus::ok) return kExitDiverged;
+  if (run.interrupted) return kExitInterrupted;
   return stopped_early ? kExitStoppedEarly : kExitOk;
 }
 

@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "frame_snapshot.h"
 #include "input_error.h"
+#include "long_run.h"
 #include "orbit_camera.h"
 #include "osmesa_context.h"
 #include "renderer.h"
@@ -66,10 +67,9 @@ int run_snapshot(const SnapshotOptions& o) {
 
   const Scene scene = load_scene(o.scene);
   Simulation sim = scene.make_simulation();
-  const auto sim_start = std::chrono::steady_clock::now();
-  sim.advance(o.seconds);
+  const LongRunOutcome run = run_long(sim, o.seconds);
   sim.check_now();
-  const double sim_wall = seconds_since(sim_start);
+  const double sim_wall = run.wall_seconds;
 
   FrameSnapshot snapshot;
   snapshot.geometry = make_geometry(scene);
@@ -109,8 +109,12 @@ int run_snapshot(const SnapshotOptions& o) {
   if (sim.status() != RunStatus::ok)
     std::printf("  diverged: %s; drew the last good state (t = %.4g s)\n",
                 sim.divergence_reason().c_str(), sim.time());
+  if (run.interrupted)
+    std::printf("  interrupted (Ctrl-C) at t = %.6g s of %.6g s: drew the state reached\n",
+                sim.time(), o.seconds);
   std::printf("  wrote %s\n", o.out.c_str());
-  return sim.status() == RunStatus::ok ? kExitOk : kExitDiverged;
+  if (sim.status() != RunStatus::ok) return kExitDiverged;
+  return run.interrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace neurocloth

@@ -45,14 +45,18 @@ void check_writable(const std::string& report) {
 }  // namespace
 
 TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
-  if (!(o.seconds > 0) || !std::isfinite(o.seconds))
-    throw InputError("command line", "--seconds", "must be a finite number > 0");
-  if (o.samples < 1) throw InputError("command line", "--samples", "must be >= 1");
+  // A trade runs the scene dozens of times over: an hour of simulated time
+  // each is already days of wall time for a fine cloth.
+  if (!(o.seconds > 0 && o.seconds <= 3600))
+    throw InputError("command line", "--seconds", "must be in (0, 3600] (simulated seconds)");
+  if (o.samples < 1 || o.samples > 1000)
+    throw InputError("command line", "--samples", "must be in [1, 1000]");
   if (!(o.reference_budget > 0) || !std::isfinite(o.reference_budget))
     throw InputError("command line", "--reference-budget", "must be a finite number > 0 (seconds)");
   if (!(o.method_budget > 0) || !std::isfinite(o.method_budget))
     throw InputError("command line", "--method-budget", "must be a finite number > 0 (seconds)");
-  if (o.levels < 1) throw InputError("command line", "--levels", "must be >= 1");
+  if (o.levels < 1 || o.levels > 40)
+    throw InputError("command line", "--levels", "must be in [1, 40] (each halves the step)");
   for (const std::string& m : o.methods)
     if (m != kAdaptiveMethod && !parse_integrator(m))
       throw InputError("command line", "--methods",

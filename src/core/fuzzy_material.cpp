@@ -11,6 +11,7 @@
 #include "fuzzy/fcl_reader.h"
 #include "input_error.h"
 #include "linguistic_material_json.h"
+#include "text_file.h"
 
 namespace neurocloth {
 
@@ -32,16 +33,15 @@ LinguisticMaterial read_linguistic_material(const JsonFields& in, const nlohmann
 
 LinguisticMaterial load_preset(const std::string& name) {
   const std::string path = assets_directory() + "/materials/" + name + ".json";
-  std::ifstream file(path, std::ios::binary);
-  if (name.empty() || name.find('/') != std::string::npos || !file) {
+  std::error_code ec;
+  if (name.empty() || name.find('/') != std::string::npos ||
+      !std::filesystem::is_regular_file(path, ec)) {
     std::string known;
     for (const auto& n : preset_names())
       known += (known.empty() ? "" : ", ") + n;
     throw InputError(path, "", "no material preset '" + name + "' (presets: " + known + ")");
   }
-  std::ostringstream text;
-  text << file.rdbuf();
-  const JsonFields in(text.str(), path);
+  const JsonFields in(read_text_file(path, "material preset", kMaxSceneBytes), path);
   return read_linguistic_material(in, in.root(), "");
 }
 

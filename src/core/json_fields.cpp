@@ -69,7 +69,12 @@ const char* type_name(const nlohmann::json& v) {
 }  // namespace
 
 JsonFields::JsonFields(const std::string& text, std::string file)
-    : text_(text), file_(std::move(file)), root_(parse_or_throw(text_, file_)), locator_(text_) {}
+    : text_(text), file_(std::move(file)), root_(parse_or_throw(text_, file_)), locator_(text_) {
+  const JsonLocator::Duplicate& d = locator_.duplicate();
+  if (!d.field.empty())
+    throw InputError(file_, d.field, "key written twice in one object (which one is meant?)",
+                     d.line, d.column);
+}
 
 void JsonFields::fail(const std::string& field, const std::string& message) const {
   const auto [line, column] = locator_.find(field);
@@ -130,6 +135,27 @@ bool JsonFields::boolean(const nlohmann::json& v, const std::string& field) cons
 std::string JsonFields::string(const nlohmann::json& v, const std::string& field) const {
   if (!v.is_string()) fail(field, std::string("expected a string, got ") + type_name(v));
   return v.get<std::string>();
+}
+
+double JsonFields::number(const nlohmann::json& v, const std::string& field,
+                          const Limit& limit) const {
+  const double d = number(v, field);
+  if (!limit.contains(d)) fail(field, limit.refusal(d));
+  return d;
+}
+
+int JsonFields::integer(const nlohmann::json& v, const std::string& field,
+                        const Limit& limit) const {
+  const int i = integer(v, field);
+  if (!limit.contains(i)) fail(field, limit.refusal(i));
+  return i;
+}
+
+Vec3 JsonFields::vec3(const nlohmann::json& v, const std::string& field, const Limit& limit) const {
+  const Vec3 p = vec3(v, field);
+  for (int k = 0; k < 3; ++k)
+    if (!limit.contains(p[k])) fail(JsonLocator::element(field, k), limit.refusal(p[k]));
+  return p;
 }
 
 Vec3 JsonFields::vec3(const nlohmann::json& v, const std::string& field) const {

@@ -9,6 +9,7 @@
 
 #include "input_error.h"
 #include "json_locator.h"
+#include "physical_limits.h"
 #include "vec3.h"
 
 namespace neurocloth {
@@ -38,6 +39,10 @@ class JsonFields {
   bool boolean(const nlohmann::json& v, const std::string& field) const;
   std::string string(const nlohmann::json& v, const std::string& field) const;
   Vec3 vec3(const nlohmann::json& v, const std::string& field) const;
+  // The same, inside a physical limit: the message gives the range and why.
+  double number(const nlohmann::json& v, const std::string& field, const Limit& limit) const;
+  int integer(const nlohmann::json& v, const std::string& field, const Limit& limit) const;
+  Vec3 vec3(const nlohmann::json& v, const std::string& field, const Limit& limit) const;
 
  private:
   std::string text_;

@@ -57,8 +57,12 @@ void JsonLocator::value(const std::string& field) {
   if (c == '{') {
     advance();
     skip_space();
+    std::set<std::string> keys;
     while (pos_ < text_.size() && peek() != '}') {
+      const int key_line = line_, key_column = column_;
       const std::string key = string_token();
+      if (!keys.insert(key).second && duplicate_.field.empty())
+        duplicate_ = {member(field, key), key_line, key_column};
       skip_space();
       advance();  // ':'
       skip_space();

@@ -56,12 +56,19 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
   ClothState trial = state;
 
   RelaxReport report;
-  report.last_step = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i)
+    report.free_nodes += net.masses.free[i] != 0.0 ? 1 : 0;
+  if (report.free_nodes == 0) {  // every node pinned: no force can move anything
+    report.converged = true;
+    return report;
+  }
+  // No step taken yet counts as an unbounded one: convergence needs a step.
+  double last_step = std::numeric_limits<double>::infinity();
   double mu = 100.0;  // 1/h^2 for h = 0.1 s: a cautious first step
   double energy = potential(net, state);
   report.residual_force = total_force(net, state, F, f);
   for (int it = 0; it < settings.max_iterations; ++it) {
-    if (report.residual_force <= force_tol && report.last_step <= settings.position_tolerance) {
+    if (report.residual_force <= force_tol && last_step <= settings.position_tolerance) {
       report.converged = true;
       break;
     }
@@ -86,7 +93,8 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
         trial_energy <= energy + 1e-13 * std::abs(energy)) {
       state = trial;
       energy = trial_energy;
-      report.last_step = step;
+      last_step = report.last_step = step;
+      ++report.accepted_steps;
       report.residual_force = total_force(net, state, F, f);
       mu = std::max(mu * 0.25, 1e-9);
     } else {
@@ -95,7 +103,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
     }
   }
   if (!report.converged && report.residual_force <= force_tol &&
-      report.last_step <= settings.position_tolerance)
+      last_step <= settings.position_tolerance)
     report.converged = true;
   return report;
 }

@@ -28,7 +28,9 @@ struct RelaxReport {
   int iterations = 0;
   int cg_iterations = 0;
   double residual_force = 0;  // N, max over free nodes
-  double last_step = 0;       // m, max node displacement of the last accepted step
+  double last_step = 0;       // m, max node displacement of the last accepted step (0: none)
+  int accepted_steps = 0;
+  std::size_t free_nodes = 0;  // none: nothing can move, so the state is converged as it is
 };
 
 // Relaxes `state` in place (velocities set to zero). External forces count, as a

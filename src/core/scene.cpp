@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "modules/module_reader.h"
 #include "modules/module_set.h"
 #include "obj_mesh_builder.h"
+#include "text_file.h"
 
 namespace neurocloth {
 namespace fs = std::filesystem;
@@ -59,15 +61,18 @@ GridSpec read_grid(const JsonFields& in, const json& grid, const SpringFamilies&
     in.fail(field + ".cols", "must be >= 1 (got " + std::to_string(spec.cols) + ")");
   if (static_cast<long long>(spec.rows) * spec.cols > 4'000'000)
     in.fail(field, "more than 4 million nodes");
-  spec.spacing = in.number(in.member(grid, field, "spacing"), field + ".spacing");
-  if (!(spec.spacing > 0)) in.fail(field + ".spacing", "must be > 0");
-  if (in.has(grid, "origin")) spec.origin = in.vec3(grid.at("origin"), field + ".origin");
+  spec.spacing = in.number(in.member(grid, field, "spacing"), field + ".spacing", limits::kSpacing);
+  if (in.has(grid, "origin"))
+    spec.origin = in.vec3(grid.at("origin"), field + ".origin", limits::kCoordinate);
   if (in.has(grid, "row_direction"))
-    spec.row_direction = in.vec3(grid.at("row_direction"), field + ".row_direction");
+    spec.row_direction =
+        in.vec3(grid.at("row_direction"), field + ".row_direction", limits::kDirection);
   if (in.has(grid, "col_direction"))
-    spec.col_direction = in.vec3(grid.at("col_direction"), field + ".col_direction");
-  if (spec.row_direction.norm() == 0) in.fail(field + ".row_direction", "must not be zero");
-  if (spec.col_direction.norm() == 0) in.fail(field + ".col_direction", "must not be zero");
+    spec.col_direction =
+        in.vec3(grid.at("col_direction"), field + ".col_direction", limits::kDirection);
+  // Only the direction counts; one too short to normalise has none.
+  if (!(spec.row_direction.norm() > 1e-9)) in.fail(field + ".row_direction", "must not be zero");
+  if (!(spec.col_direction.norm() > 1e-9)) in.fail(field + ".col_direction", "must not be zero");
   if (spec.row_direction.normalized().cross(spec.col_direction.normalized()).norm() < 1e-9)
     in.fail(field + ".col_direction", "must not be parallel to row_direction");
   return spec;
@@ -78,12 +83,10 @@ ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFami
   in.allow_only(mesh, field, {"obj", "scale", "translate"});
   ObjMeshSpec spec;
   spec.path = resolve_path(in.file(), in.string(in.member(mesh, field, "obj"), field + ".obj"));
-  if (in.has(mesh, "scale")) {
-    spec.scale = in.number(mesh.at("scale"), field + ".scale");
-    if (!(spec.scale > 0)) in.fail(field + ".scale", "must be > 0");
-  }
+  if (in.has(mesh, "scale"))
+    spec.scale = in.number(mesh.at("scale"), field + ".scale", limits::kMeshScale);
   if (in.has(mesh, "translate"))
-    spec.translate = in.vec3(mesh.at("translate"), field + ".translate");
+    spec.translate = in.vec3(mesh.at("translate"), field + ".translate", limits::kCoordinate);
   spec.bend = families.bend;
   ClothTopology t;
   try {
@@ -100,6 +103,18 @@ ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFami
         t.springs.end());
   }
   return t;
+}
+
+// Spacing, origin, a mesh's vertices, scale and translation are each in range,
+// and still together they could put the cloth anywhere: its nodes must be too.
+void check_extent(const JsonFields& in, const ClothTopology& t, const std::string& field) {
+  for (std::size_t i = 0; i < t.rest_positions.size(); ++i) {
+    const Vec3& p = t.rest_positions[i];
+    for (int k = 0; k < 3; ++k)
+      if (!limits::kCoordinate.contains(p[k]))
+        in.fail(field, "node " + std::to_string(i) + " lands at " + "xyz"[k] + " = " +
+                           show_number(p[k]) + " m: " + limits::kCoordinate.meaning);
+  }
 }
 
 std::vector<int> read_pins(const JsonFields& in, const json& cloth, const ClothTopology& t) {
@@ -127,10 +142,10 @@ SpringFunction read_spring_function(const JsonFields& in, const json& cloth) {
   else
     in.fail(field + ".type",
             "unknown spring function '" + type + "' (expected linear or stiffening)");
-  if (in.has(v, "strain")) fn.strain_threshold = in.number(v.at("strain"), field + ".strain");
-  if (fn.strain_threshold < 0) in.fail(field + ".strain", "must be >= 0");
-  if (in.has(v, "factor")) fn.stiffening_factor = in.number(v.at("factor"), field + ".factor");
-  if (fn.stiffening_factor < 1) in.fail(field + ".factor", "must be >= 1");
+  if (in.has(v, "strain"))
+    fn.strain_threshold = in.number(v.at("strain"), field + ".strain", limits::kStrain);
+  if (in.has(v, "factor"))
+    fn.stiffening_factor = in.number(v.at("factor"), field + ".factor", limits::kStiffening);
   return fn;
 }
 
@@ -153,32 +168,28 @@ Material read_material(const JsonFields& in, const json& root,
     }
     const DerivedMaterial d =
         FuzzyMaterial::load(lm.rules_path).derive(lm.inputs, lm.source, lm.inputs_field);
+    // A rule base may define its outputs over any range: what it gives must
+    // still be a material.
+    if (const auto why = material_outside_limits(d.material))
+      in.fail(in.has(m, "preset") ? field + ".preset" : field + ".inputs",
+              "the rule base " + lm.rules_path + " gives " + *why);
     fuzzy = Scene::FuzzySource{lm.rules_path, lm.inputs, d.report.notes};
     return d.material;
   }
   in.allow_only(
       m, field,
       {"spring_constant", "shear_constant", "bend_constant", "node_mass", "viscosity", "friction"});
-  auto read = [&](const char* key, bool required, double fallback) {
+  auto read = [&](const char* key, bool required, double fallback, const Limit& limit) {
     if (!required && !in.has(m, key)) return fallback;
-    return in.number(in.member(m, field, key), field + "." + key);
+    return in.number(in.member(m, field, key), field + "." + key, limit);
   };
   Material mat;
-  mat.spring_constant = read("spring_constant", true, 0);
-  mat.shear_constant = read("shear_constant", false, -1);
-  mat.bend_constant = read("bend_constant", false, -1);
-  mat.node_mass = read("node_mass", true, 0);
-  mat.viscosity = read("viscosity", true, 0);
-  mat.friction = read("friction", false, 0.0);
-  if (mat.spring_constant < 0)
-    in.fail(field + ".spring_constant", "must be >= 0 (stiffness cannot be negative)");
-  if (in.has(m, "shear_constant") && mat.shear_constant < 0)
-    in.fail(field + ".shear_constant", "must be >= 0");
-  if (in.has(m, "bend_constant") && mat.bend_constant < 0)
-    in.fail(field + ".bend_constant", "must be >= 0");
-  if (!(mat.node_mass > 0)) in.fail(field + ".node_mass", "must be > 0 (a mass point needs mass)");
-  if (mat.viscosity < 0) in.fail(field + ".viscosity", "must be >= 0");
-  if (mat.friction < 0) in.fail(field + ".friction", "must be >= 0");
+  mat.spring_constant = read("spring_constant", true, 0, limits::kStiffness);
+  mat.shear_constant = read("shear_constant", false, -1, limits::kStiffness);
+  mat.bend_constant = read("bend_constant", false, -1, limits::kStiffness);
+  mat.node_mass = read("node_mass", true, 0, limits::kNodeMass);
+  mat.viscosity = read("viscosity", true, 0, limits::kViscosity);
+  mat.friction = read("friction", false, 0.0, limits::kFriction);
   return mat;
 }
 
@@ -198,28 +209,49 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
               "unknown integrator '" + name + "' (expected one of: " + integrator_names() + ")");
     s.integrator = *kind;
   }
-  if (in.has(v, "dt")) s.dt = in.number(v.at("dt"), field + ".dt");
-  if (!(s.dt > 0)) in.fail(field + ".dt", "must be > 0");
+  if (in.has(v, "dt")) s.dt = in.number(v.at("dt"), field + ".dt", limits::kTimeStep);
   if (in.has(v, "adaptive")) s.adaptive = in.boolean(v.at("adaptive"), field + ".adaptive");
   AdaptiveSettings& a = s.adaptive_settings;
   if (in.has(v, "safety")) a.safety = in.number(v.at("safety"), field + ".safety");
   if (!(a.safety > 0 && a.safety <= 1)) in.fail(field + ".safety", "must be in (0, 1]");
   if (in.has(v, "growth_tolerance"))
-    a.growth_tolerance = in.number(v.at("growth_tolerance"), field + ".growth_tolerance");
-  if (a.growth_tolerance < 0) in.fail(field + ".growth_tolerance", "must be >= 0");
+    a.growth_tolerance =
+        in.number(v.at("growth_tolerance"), field + ".growth_tolerance", limits::kGrowthTolerance);
   if (in.has(v, "min_step_fraction"))
-    a.min_step_fraction = in.number(v.at("min_step_fraction"), field + ".min_step_fraction");
-  if (!(a.min_step_fraction > 0 && a.min_step_fraction <= 1))
-    in.fail(field + ".min_step_fraction", "must be in (0, 1]");
+    a.min_step_fraction =
+        in.number(v.at("min_step_fraction"), field + ".min_step_fraction", limits::kStepFraction);
   if (in.has(v, "check_interval"))
-    s.divergence.check_interval = in.integer(v.at("check_interval"), field + ".check_interval");
-  if (s.divergence.check_interval < 1) in.fail(field + ".check_interval", "must be >= 1");
+    s.divergence.check_interval =
+        in.integer(v.at("check_interval"), field + ".check_interval", limits::kCheckInterval);
   return s;
+}
+
+// A scene is a JSON object. A file that plainly is something else (a rule
+// base, a mesh given where the scene goes) is named as what it is, rather
+// than reported as malformed JSON.
+void check_is_a_json_object(const std::string& text, const std::string& path) {
+  std::size_t i = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i])))
+    ++i;
+  if (i < text.size() && text[i] == '{') return;
+  std::string hint;
+  if (text.find("FUNCTION_BLOCK") != std::string::npos)
+    hint = ": this is an FCL rule base; a scene names one under material.rules";
+  else if (text.find("\nv ") != std::string::npos || text.compare(i, 2, "v ") == 0)
+    hint = ": this looks like an OBJ mesh; a scene names one under cloth.mesh.obj";
+  else if (i == text.size())
+    hint = ": the file is empty";
+  int line = 1;
+  for (std::size_t k = 0; k < i && k < text.size(); ++k)
+    line += text[k] == '\n';
+  throw InputError(path, "", "not a scene: expected an object, starting with '{'" + hint,
+                   i < text.size() ? line : 0);
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path) {
+  check_is_a_json_object(text, path);
   const JsonFields in(text, path);
   const json& root = in.root();
   in.allow_only(root, "",
@@ -241,10 +273,12 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   } else {
     scene.topology = read_mesh(in, cloth.at("mesh"), families);
   }
+  check_extent(in, scene.topology, grid ? "cloth.grid" : "cloth.mesh");
   scene.pins = read_pins(in, cloth, scene.topology);
   scene.spring_function = read_spring_function(in, cloth);
   scene.material = read_material(in, root, scene.fuzzy_material);
-  if (in.has(root, "gravity")) scene.gravity = in.vec3(root.at("gravity"), "gravity");
+  if (in.has(root, "gravity"))
+    scene.gravity = in.vec3(root.at("gravity"), "gravity", limits::kAcceleration);
   scene.solver = read_solver(in, root);
   if (in.has(root, "modules"))
     scene.modules = read_modules(in, root.at("modules"), scene.topology, scene.pins);
@@ -252,11 +286,7 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "", "cannot open scene file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_scene(text.str(), path);
+  return parse_scene(read_text_file(path, "scene file", kMaxSceneBytes), path);
 }
 
 Scene resized_grid(const Scene& scene, int n) {

@@ -115,7 +115,9 @@ Simulation::Simulation(Simulation&& o) noexcept
       bound_d_(std::move(o.bound_d_)),
       budget_left_(o.budget_left_),
       budget_exhausted_(o.budget_exhausted_),
-      observer_(std::move(o.observer_)) {}
+      observer_(std::move(o.observer_)),
+      interrupt_(std::move(o.interrupt_)),
+      interrupted_(o.interrupted_) {}
 
 ClothNetwork& Simulation::mutable_network() {
   front_forces_valid_ = false;
@@ -202,6 +204,7 @@ long Simulation::substeps() {
 
 RunStatus Simulation::advance(double seconds) {
   budget_exhausted_ = false;
+  interrupted_ = false;
   if (status_ != RunStatus::ok || !(seconds > 0.0)) return status_;
   const double t_end = time_ + seconds;
   const double dt = settings_.dt;
@@ -223,6 +226,10 @@ RunStatus Simulation::advance(double seconds) {
                                          : fixed_frame(last && !whole ? remaining : dt);
     if (!done && status_ == RunStatus::ok) budget_exhausted_ = true;
     if (last && done && status_ == RunStatus::ok) time_ = t_end;  // no round-off drift at the end
+    if (interrupt_ && !last && status_ == RunStatus::ok && interrupt_(*this)) {
+      interrupted_ = true;
+      break;
+    }
   }
   // Between energy checks, at least never hand out a NaN: a cheap test every call.
   if (status_ == RunStatus::ok && steps_since_check_ > 0 && !front_->all_finite()) run_check();

@@ -63,6 +63,14 @@ class Simulation {
   // it ran out of step budget (the state is finite and healthy, only behind;
   // time() says how far it got). Cleared by the next advance().
   bool budget_exhausted() const { return budget_exhausted_; }
+  // Asked between frames (after every dt of simulated time) inside advance();
+  // when it returns true, advance() returns there, ok and short of the time
+  // asked: interrupted() (cleared by the next advance()). The steps taken are
+  // exactly those of an uninterrupted run. For progress lines and Ctrl-C.
+  void set_interrupt(std::function<bool(const Simulation&)> interrupt) {
+    interrupt_ = std::move(interrupt);
+  }
+  bool interrupted() const { return interrupted_; }
   // Runs the full divergence check now (e.g. before writing a result).
   RunStatus check_now();
 
@@ -170,6 +178,8 @@ class Simulation {
   long budget_left_ = 0;                   // trial steps this advance() may still take
   bool budget_exhausted_ = false;
   std::function<void(const StepEvent&)> observer_;
+  std::function<bool(const Simulation&)> interrupt_;
+  bool interrupted_ = false;
 };
 
 }  // namespace neurocloth

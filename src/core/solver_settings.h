@@ -9,6 +9,7 @@
 #include <string>
 
 #include "integrator.h"
+#include "physical_limits.h"
 
 namespace neurocloth {
 
@@ -58,15 +59,19 @@ inline void validate(const SolverSettings& s) {
   if (std::find(std::begin(kAllIntegrators), std::end(kAllIntegrators), s.integrator) ==
       std::end(kAllIntegrators))
     fail("integrator", "one of " + integrator_names(), static_cast<double>(s.integrator));
-  if (!(s.dt > 0 && std::isfinite(s.dt))) fail("dt", "a finite number > 0", s.dt);
+  // The one floor on every step a run is asked to take (a scene, --dt, a trade
+  // row, the viewer): below it a run of seconds would take millions of steps.
+  if (!limits::kTimeStep.contains(s.dt))
+    fail("dt", "in [1e-06, 10] s (" + std::string(limits::kTimeStep.meaning) + ")", s.dt);
   const AdaptiveSettings& a = s.adaptive_settings;
   if (!(a.safety > 0 && a.safety <= 1)) fail("safety", "in (0, 1]", a.safety);
-  if (!(a.growth_tolerance >= 0 && std::isfinite(a.growth_tolerance)))
-    fail("growth_tolerance", "a finite number >= 0", a.growth_tolerance);
-  if (!(a.min_step_fraction > 0 && a.min_step_fraction <= 1))
-    fail("min_step_fraction", "in (0, 1]", a.min_step_fraction);
+  if (!limits::kGrowthTolerance.contains(a.growth_tolerance))
+    fail("growth_tolerance", "in [0, 1000]", a.growth_tolerance);
+  if (!limits::kStepFraction.contains(a.min_step_fraction))
+    fail("min_step_fraction", "in [1e-06, 1]", a.min_step_fraction);
   const DivergenceSettings& d = s.divergence;
-  if (d.check_interval < 1) fail("check_interval", ">= 1", d.check_interval);
+  if (!limits::kCheckInterval.contains(d.check_interval))
+    fail("check_interval", "in [1, 1000000]", d.check_interval);
   if (!(d.runaway_factor >= 1)) fail("runaway_factor", ">= 1", d.runaway_factor);
   if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
   if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);

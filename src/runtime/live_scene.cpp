@@ -304,6 +304,9 @@ std::string LiveScene::on(const LoadRules& c) {
   }
   const DerivedMaterial now = rules.derive(inputs_, c.path, "input");  // same names, or throws
   const DerivedMaterial initial = rules.derive(scene.fuzzy_material->inputs, c.path, "input");
+  for (const DerivedMaterial* d : {&now, &initial})  // as a scene file's rule base is checked
+    if (const auto why = material_outside_limits(d->material))
+      throw InputError(c.path, "", "the rule base gives " + *why);
   scene.material = initial.material;
   scene.fuzzy_material->rules_path = c.path;
   scene.fuzzy_material->notes = initial.report.notes;

@@ -4,6 +4,7 @@
 // them, and fcl_writer.cpp uses the same rules to refuse names that would not
 // read back as one identifier.
 #include <charconv>
+#include <cmath>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -195,6 +196,8 @@ class Tokenizer {
   // A '.' that continues a number; ".." is the RANGE separator ("0..1").
   bool lone_dot() const { return at(0) == '.' && at(1) != '.'; }
 
+  static constexpr double kMaxMagnitude = 1e15;
+
   Token number(Token t) {
     const std::size_t from = i_;
     if (at(0) == '+' || at(0) == '-') advance();
@@ -220,6 +223,10 @@ class Tokenizer {
     const auto result = std::from_chars(first, t.text.data() + t.text.size(), t.value);
     if (result.ec != std::errc() || result.ptr != t.text.data() + t.text.size())
       return error(t, "bad number '" + t.text + "': not representable as a double");
+    // Ranges, set parameters and weights are multiplied and integrated over;
+    // beyond this the engine's centroids would overflow to infinity.
+    if (!(std::abs(t.value) <= kMaxMagnitude))
+      return error(t, "number '" + t.text + "' is beyond +-1e15, more than a rule base can use");
     t.kind = TokenKind::number;
     return t;
   }

@@ -13,6 +13,7 @@
 
 #include "fcl_lexer.h"
 #include "input_error.h"
+#include "text_file.h"
 
 namespace neurocloth::fuzzy {
 namespace {
@@ -467,7 +468,25 @@ class Parser : fcl::Cursor {
     return node;
   }
 
+  // Each '(' and NOT nests one level, here and again in inference and in the
+  // writer, which all recurse: a hostile file could nest until the stack runs
+  // out. No rule a person writes comes near this depth.
+  static constexpr int kMaxConditionDepth = 32;
+
   Condition unary() {
+    if (!at_keyword("NOT") && !at_symbol("(")) return clause();
+    if (depth_ == kMaxConditionDepth)
+      fail("the condition nests '(' and NOT more than " + std::to_string(kMaxConditionDepth) +
+               " levels deep",
+           where(peek()));
+    ++depth_;
+    Condition c = nested();
+    --depth_;
+    return c;
+  }
+
+  // A NOT or a '(' group, one level deeper.
+  Condition nested() {
     if (accept_keyword("NOT")) {
       Condition node;
       node.kind = Condition::Kind::negation;
@@ -537,6 +556,7 @@ class Parser : fcl::Cursor {
   }
 
   Part part_ = Part::declarations;
+  int depth_ = 0;                                 // of the condition being read
   std::vector<Slot> input_slots_, output_slots_;  // parallel to system_.inputs / outputs
   FuzzySystem system_;
 };
@@ -548,15 +568,7 @@ FuzzySystem parse_fcl(const std::string& text, const std::string& path) {
 }
 
 FuzzySystem read_fcl(const std::string& path) {
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored))
-    throw InputError(path, "", "is a directory, not an FCL file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open FCL file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path, "", "cannot read FCL file");
-  return parse_fcl(text.str(), path);
+  return parse_fcl(read_text_file(path, "FCL file", kMaxRuleBaseBytes), path);
 }
 
 }  // namespace neurocloth::fuzzy

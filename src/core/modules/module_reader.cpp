@@ -20,32 +20,21 @@ class ModuleFields {
   [[noreturn]] void fail(const char* key, const std::string& message) const {
     in_.fail(at(key), message);
   }
-  double number(const char* key, double fallback) const {
-    return has(key) ? in_.number(obj_.at(key), at(key)) : fallback;
+  // The value of `key` (or `fallback`) inside a physical limit.
+  double within(const char* key, double fallback, const Limit& limit) const {
+    return has(key) ? in_.number(obj_.at(key), at(key), limit) : fallback;
   }
-  double required_number(const char* key) const {
-    return in_.number(in_.member(obj_, field_, key), at(key));
+  double required_within(const char* key, const Limit& limit) const {
+    return in_.number(in_.member(obj_, field_, key), at(key), limit);
   }
-  int integer(const char* key, int fallback) const {
-    return has(key) ? in_.integer(obj_.at(key), at(key)) : fallback;
+  int integer_within(const char* key, int fallback, const Limit& limit) const {
+    return has(key) ? in_.integer(obj_.at(key), at(key), limit) : fallback;
   }
-  Vec3 vec3(const char* key, const Vec3& fallback) const {
-    return has(key) ? in_.vec3(obj_.at(key), at(key)) : fallback;
+  Vec3 vec3_within(const char* key, const Vec3& fallback, const Limit& limit) const {
+    return has(key) ? in_.vec3(obj_.at(key), at(key), limit) : fallback;
   }
-  Vec3 required_vec3(const char* key) const {
-    return in_.vec3(in_.member(obj_, field_, key), at(key));
-  }
-  double at_least(const char* key, double fallback, double low, bool strict) const {
-    const double v = number(key, fallback);
-    if (strict ? !(v > low) : !(v >= low))
-      fail(key, std::string("must be ") + (strict ? "> " : ">= ") + format(low) + " (got " +
-                    format(v) + ")");
-    return v;
-  }
-  static std::string format(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
+  Vec3 required_vec3_within(const char* key, const Limit& limit) const {
+    return in_.vec3(in_.member(obj_, field_, key), at(key), limit);
   }
   const JsonFields& in() const { return in_; }
   const json& obj() const { return obj_; }
@@ -59,12 +48,12 @@ class ModuleFields {
 
 ContactSpec read_contact(const ModuleFields& m) {
   ContactSpec c;
-  c.thickness = m.at_least("thickness", c.thickness, 0.0, false);
-  if (m.has("friction")) c.friction = m.at_least("friction", 0.0, 0.0, false);
+  c.thickness = m.within("thickness", c.thickness, limits::kThickness);
+  if (m.has("friction")) c.friction = m.within("friction", 0.0, limits::kFriction);
   if (m.has("static_friction")) {
-    c.static_friction = m.at_least("static_friction", 0.0, 0.0, false);
+    c.static_friction = m.within("static_friction", 0.0, limits::kFriction);
     if (c.friction && *c.static_friction < *c.friction)
-      m.fail("static_friction", "must be >= friction (" + ModuleFields::format(*c.friction) +
+      m.fail("static_friction", "must be >= friction (" + show_number(*c.friction) +
                                     "): a contact cannot stick more weakly than it slides");
   }
   return c;
@@ -75,9 +64,9 @@ ContactSpec read_contact(const ModuleFields& m) {
 ModuleSpec read_plane(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "point", "normal", CONTACT_KEYS});
   PlaneSpec s;
-  s.point = m.vec3("point", s.point);
-  s.normal = m.vec3("normal", s.normal);
-  if (!(s.normal.norm() > 0)) m.fail("normal", "must not be zero");
+  s.point = m.vec3_within("point", s.point, limits::kCoordinate);
+  s.normal = m.vec3_within("normal", s.normal, limits::kDirection);
+  if (!(s.normal.norm() > 1e-9)) m.fail("normal", "must not be zero");
   s.normal.normalize();
   s.contact = read_contact(m);
   return s;
@@ -86,12 +75,8 @@ ModuleSpec read_plane(const ModuleFields& m) {
 ModuleSpec read_box(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "center", "size", CONTACT_KEYS});
   BoxSpec s;
-  s.center = m.required_vec3("center");
-  const Vec3 size = m.required_vec3("size");
-  if (!(size.minCoeff() > 0))
-    m.fail("size", "every side must be > 0 (got [" + ModuleFields::format(size.x()) + ", " +
-                       ModuleFields::format(size.y()) + ", " + ModuleFields::format(size.z()) +
-                       "])");
+  s.center = m.required_vec3_within("center", limits::kCoordinate);
+  const Vec3 size = m.required_vec3_within("size", limits::kSize);
   s.half_extents = 0.5 * size;
   s.contact = read_contact(m);
   return s;
@@ -100,9 +85,8 @@ ModuleSpec read_box(const ModuleFields& m) {
 ModuleSpec read_sphere(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "center", "radius", CONTACT_KEYS});
   SphereSpec s;
-  s.center = m.required_vec3("center");
-  m.required_number("radius");
-  s.radius = m.at_least("radius", 0, 0.0, true);
+  s.center = m.required_vec3_within("center", limits::kCoordinate);
+  s.radius = m.required_within("radius", limits::kSize);
   s.contact = read_contact(m);
   return s;
 }
@@ -110,10 +94,9 @@ ModuleSpec read_sphere(const ModuleFields& m) {
 ModuleSpec read_capsule(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "a", "b", "radius", CONTACT_KEYS});
   CapsuleSpec s;
-  s.a = m.required_vec3("a");
-  s.b = m.required_vec3("b");
-  m.required_number("radius");
-  s.radius = m.at_least("radius", 0, 0.0, true);
+  s.a = m.required_vec3_within("a", limits::kCoordinate);
+  s.b = m.required_vec3_within("b", limits::kCoordinate);
+  s.radius = m.required_within("radius", limits::kSize);
   s.contact = read_contact(m);
   return s;
 }
@@ -121,8 +104,7 @@ ModuleSpec read_capsule(const ModuleFields& m) {
 ModuleSpec read_air_drag(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "rate"});
   AirDragSpec s;
-  m.required_number("rate");
-  s.rate = m.at_least("rate", 0, 0.0, false);
+  s.rate = m.required_within("rate", limits::kRate);
   return s;
 }
 
@@ -130,17 +112,17 @@ ModuleSpec read_wind(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(),
                     {"type", "velocity", "density", "drag", "lift", "skin", "gust"});
   WindSpec s;
-  s.velocity = m.required_vec3("velocity");
-  s.density = m.at_least("density", s.density, 0.0, false);
-  s.drag = m.at_least("drag", s.drag, 0.0, false);
-  s.lift = m.at_least("lift", s.lift, 0.0, false);
-  s.skin = m.at_least("skin", s.skin, 0.0, false);
+  s.velocity = m.required_vec3_within("velocity", limits::kSpeed);
+  s.density = m.within("density", s.density, limits::kDensity);
+  s.drag = m.within("drag", s.drag, limits::kCoefficient);
+  s.lift = m.within("lift", s.lift, limits::kCoefficient);
+  s.skin = m.within("skin", s.skin, limits::kCoefficient);
   if (m.has("gust")) {
     const ModuleFields g(m.in(), m.obj().at("gust"), m.at("gust"));
     m.in().require_object(g.obj(), g.field());
     m.in().allow_only(g.obj(), g.field(), {"amplitude", "period"});
-    s.gust.amplitude = g.at_least("amplitude", s.gust.amplitude, 0.0, false);
-    s.gust.period = g.at_least("period", s.gust.period, 0.0, true);
+    s.gust.amplitude = g.within("amplitude", s.gust.amplitude, limits::kGustAmplitude);
+    s.gust.period = g.within("period", s.gust.period, limits::kPeriod);
   }
   return s;
 }
@@ -149,8 +131,7 @@ ModuleSpec read_strain_limit(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(),
                     {"type", "max_stretch", "families", "iterations", "tolerance"});
   StrainLimitSpec s;
-  m.required_number("max_stretch");
-  s.max_stretch = m.at_least("max_stretch", 0, 1.0, false);
+  s.max_stretch = m.required_within("max_stretch", limits::kStretch);
   if (m.has("families")) {
     const json& list = m.obj().at("families");
     if (!list.is_array() || list.empty())
@@ -169,18 +150,16 @@ ModuleSpec read_strain_limit(const ModuleFields& m) {
         m.in().fail(f, "unknown spring family '" + name + "' (expected structural, shear or bend)");
     }
   }
-  s.iterations = m.integer("iterations", s.iterations);
-  if (s.iterations < 1) m.fail("iterations", "must be >= 1");
-  s.tolerance = m.at_least("tolerance", s.tolerance, 0.0, false);
+  s.iterations = m.integer_within("iterations", s.iterations, limits::kStrainIterations);
+  s.tolerance = m.within("tolerance", s.tolerance, limits::kTolerance);
   return s;
 }
 
 ModuleSpec read_self_collision(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "thickness", "iterations"});
   SelfCollisionSpec s;
-  s.thickness = m.at_least("thickness", s.thickness, 0.0, true);
-  s.iterations = m.integer("iterations", s.iterations);
-  if (s.iterations < 1) m.fail("iterations", "must be >= 1");
+  s.thickness = m.within("thickness", s.thickness, limits::kGap);
+  s.iterations = m.integer_within("iterations", s.iterations, limits::kCollisionIterations);
   return s;
 }
 
@@ -210,16 +189,14 @@ ModuleSpec read_pin_motion(const ModuleFields& m, const ClothTopology& topology,
       const ModuleFields k(m.in(), list[i], JsonLocator::element(m.at("keyframes"), i));
       m.in().require_object(k.obj(), k.field());
       m.in().allow_only(k.obj(), k.field(), {"t", "offset"});
-      const double t = k.required_number("t");
-      if (t < 0) k.fail("t", "must be >= 0");
+      const double t = k.required_within("t", limits::kDuration);
       if (!s.keyframes.empty() && !(t > s.keyframes.back().first))
         k.fail("t", "keyframe times must increase");
-      s.keyframes.emplace_back(t, k.required_vec3("offset"));
+      s.keyframes.emplace_back(t, k.required_vec3_within("offset", limits::kCoordinate));
     }
   } else {
-    s.amplitude = m.required_vec3("amplitude");
-    m.required_number("frequency");
-    s.frequency = m.at_least("frequency", 0, 0.0, false);
+    s.amplitude = m.required_vec3_within("amplitude", limits::kCoordinate);
+    s.frequency = m.required_within("frequency", limits::kFrequency);
   }
   for (int n : s.nodes)
     if (std::find(pins.begin(), pins.end(), n) == pins.end()) pins.push_back(n);

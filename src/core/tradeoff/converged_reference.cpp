@@ -4,6 +4,8 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "physical_limits.h"
+
 namespace neurocloth {
 namespace {
 
@@ -74,6 +76,10 @@ ConvergedReference converge_reference(const Scene& scene, const std::vector<doub
     const double predicted = 2 * run.wall_seconds * seconds / reached;
     if (r.wall_seconds + predicted > plan.budget_seconds) {
       r.stopped_by = "budget";
+      break;
+    }
+    if (s.dt / 2 < limits::kTimeStep.low) {  // no run may ask for a step below the floor
+      r.stopped_by = "step floor";
       break;
     }
     s.dt /= 2;

@@ -10,14 +10,18 @@
 #include <sstream>
 
 #include "input_error.h"
+#include "physical_limits.h"
+#include "text_file.h"
 
 namespace neurocloth {
 namespace {
 
 constexpr std::size_t kColumns = std::size(kTradeColumns);
 
+// "Not measured" (a run that did not finish, a reference never compared) is an
+// empty field: a file of ours never holds NaN or Inf where a number belongs.
 std::string number(double v, int digits) {
-  if (std::isnan(v)) return "nan";
+  if (!std::isfinite(v)) return "";
   char s[40];
   std::snprintf(s, sizeof s, "%.*g", digits, v);
   return s;
@@ -58,10 +62,12 @@ class Reader {
     throw InputError(path_, field, message, line, column);
   }
 
-  // A finite number (or "nan" when `nan_ok`), at least `min` (strictly above when `above`).
+  // A finite number (or nothing, kept as NaN, when `nan_ok`: an empty field,
+  // "none", or "nan" as files written before 2026-12 say it), at least `min`
+  // (strictly above when `above`).
   double real(const Field& f, const std::string& field, int line, double min, bool above,
               bool nan_ok = false) const {
-    if (nan_ok && f.text == "nan") return std::nan("");
+    if (nan_ok && (f.text.empty() || f.text == "none" || f.text == "nan")) return std::nan("");
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(f.text.c_str(), &end);
@@ -101,10 +107,9 @@ std::string trade_csv(const TradeTable& t) {
   s << "# cloth_size_m: " << number(t.cloth_size, 6) << "\n";
   s << "# energy_scale_j: " << number(t.energy_scale, 6) << "\n";
   s << "# reference_dt: " << number(r.dt, 17) << "\n";
-  // "nan": no two finished runs were compared.
-  s << "# reference_change: " << number(r.change >= 0 ? r.change : std::nan(""), 6) << "\n";
-  s << "# reference_rms_change: " << number(r.rms_change >= 0 ? r.rms_change : std::nan(""), 6)
-    << "\n";
+  // "none": no two finished runs were compared.
+  s << "# reference_change: " << (r.change >= 0 ? number(r.change, 6) : "none") << "\n";
+  s << "# reference_rms_change: " << (r.rms_change >= 0 ? number(r.rms_change, 6) : "none") << "\n";
   if (!r.change_by_sample.empty()) {
     s << "# reference_change_by_sample:";
     for (double c : r.change_by_sample)
@@ -165,7 +170,7 @@ class TradeCsvParser {
   }
 
  private:
-  // A number that may be "nan" (no two runs compared): kept as -1.
+  // A number that may be missing (no two runs compared): kept as -1.
   double maybe_none(const Field& v, const std::string& field) const {
     const double c = in_.real(v, field, line_, 0, false, true);
     return std::isnan(c) ? -1 : c;
@@ -274,6 +279,9 @@ class TradeCsvParser {
     if (adaptive && r.value > 1)
       in_.fail("value", "a safety factor must be in (0, 1], got " + f[2].text, line_, f[2].column);
     r.dt = in_.real(f[3], "dt", line_, 0, true);
+    // --accuracy may run this row: it must be a step a scene could ask for.
+    if (!limits::kTimeStep.contains(r.dt))
+      in_.fail("dt", limits::kTimeStep.refusal(r.dt), line_, f[3].column);
     if (!adaptive && r.value != r.dt)
       in_.fail("value", "must equal dt for a fixed step, got " + f[2].text, line_, f[2].column);
     r.steps = in_.count(f[4], "steps", line_);
@@ -281,7 +289,7 @@ class TradeCsvParser {
     if (r.status != "ok" && r.status != "diverged" && r.status != "stopped")
       in_.fail("status", "must be ok, diverged or stopped, got '" + r.status + "'", line_,
                f[11].column);
-    // A run that did not finish has no error to measure ("nan").
+    // A run that did not finish has no error to measure (an empty field).
     const bool nan_ok = !r.ok();
     r.position_error_max = in_.real(f[5], "position_error_max", line_, 0, false, nan_ok);
     r.position_error_rms = in_.real(f[6], "position_error_rms", line_, 0, false, nan_ok);
@@ -317,10 +325,7 @@ TradeTable parse_trade_csv(const std::string& text, const std::string& path) {
 }
 
 TradeTable read_trade_csv(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "", "cannot open the trade file");
-  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  return parse_trade_csv(text, path);
+  return parse_trade_csv(read_text_file(path, "trade file", kMaxTableBytes), path);
 }
 
 }  // namespace neurocloth

@@ -129,8 +129,14 @@ struct Sweep {
     s.adaptive = false;
     s.dt = first_step(scene, kind, plan.seconds / plan.samples);
     double line_wall = 0;
-    for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_wall); ++level)
+    for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_wall); ++level) {
+      if (s.dt / 2 < limits::kTimeStep.low) {  // no run may ask for a step below the floor
+        say("  " + std::string(to_string(kind)) + " stops: the step floor (1e-6 s)");
+        table.sweep_stops.push_back(std::string(to_string(kind)) + ": step floor");
+        break;
+      }
       s.dt /= 2;
+    }
   }
 
   // The paper's propagation at the scene's refresh interval, halving the

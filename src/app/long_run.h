@@ -1,0 +1,33 @@
+#pragma once
+// Running a simulation for as long as the command line asked, however long
+// that is: a line saying how long it will take (steps × the cost measured so
+// far) once it is clear the run is not short, a progress line every few wall
+// seconds on stderr, and Ctrl-C ending it cleanly at the next frame with the
+// state reached kept. A second Ctrl-C kills the process as usual.
+#include "simulation.h"
+
+namespace neurocloth {
+
+// Exit code of a run that Ctrl-C ended (the shell's convention for SIGINT);
+// the result is still written, at the time reached.
+inline constexpr int kExitInterrupted = 130;
+
+struct LongRunOptions {
+  // Wall seconds between progress lines; 0: none (and no estimate either).
+  double progress_every = 2;
+};
+
+struct LongRunOutcome {
+  bool interrupted = false;  // by Ctrl-C, at sim.time()
+  double wall_seconds = 0;
+};
+
+// sim.advance(seconds), with the above. Nothing here depends on how fast the
+// machine is: Ctrl-C stops between frames, and the frames taken are those of
+// an uninterrupted run (Simulation::set_interrupt).
+LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& options = {});
+
+// "42 s", "3.5 min", "2.1 h", "4.0 days", "3e+12 years".
+std::string human_duration(double seconds);
+
+}  // namespace neurocloth

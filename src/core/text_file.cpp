@@ -1,0 +1,63 @@
+#include "text_file.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "input_error.h"
+
+namespace neurocloth {
+
+namespace {
+std::string size_name(std::size_t bytes) {
+  return bytes >= (1u << 20) ? std::to_string(bytes >> 20) + " MiB"
+                             : std::to_string(bytes >> 10) + " KiB";
+}
+}  // namespace
+
+std::string read_text_file(const std::string& path, const char* what, std::size_t max_bytes) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path, "", std::string("is a directory, not a ") + what);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", std::string("cannot open ") + what);
+  // Read in blocks up to one byte past the limit: a regular file's size could
+  // be asked first, but a pipe or a device has none.
+  std::string text;
+  char block[1 << 16];
+  while (in) {
+    in.read(block, sizeof block);
+    text.append(block, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes)
+      throw InputError(path, "",
+                       std::string("larger than ") + size_name(max_bytes) + ": not a " + what +
+                           " this program reads");
+  }
+  if (in.bad()) throw InputError(path, "", std::string("cannot read ") + what);
+  return text;
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot write output file");
+    out << text;
+    out.flush();
+    if (!out) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": error while writing output file");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot move output file into place");
+  }
+}
+
+}  // namespace neurocloth
