@@ -278,6 +278,18 @@ TEST(ObjMesh, FaceErrorsNameTheirLine) {
   EXPECT_NE(e->message().find("vertex 9"), std::string::npos) << e->what();
 }
 
+// What a cloth does not use is never parsed: a material library is not
+// opened (this one would never end), a skin weight's huge joint id not cast
+// to int (undefined behaviour inside tinyobjloader, found by fuzzing).
+TEST(ObjMesh, StatementsAClothDoesNotUseAreNotParsed) {
+  const ClothTopology t = build(temp_obj(
+      "extras.obj",
+      "mtllib /dev/zero\nusemtl cloth\no sheet\ng front\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nvw 1 1e10 0.5\nl 1 2\np 3\nf 1/1/1 2/2/1 3/3/1\n"));
+  EXPECT_EQ(t.rest_positions.size(), 3u);
+  EXPECT_EQ(t.triangles.size(), 1u);
+}
+
 // A polygon beyond a quad becomes a fan from its first corner.
 TEST(ObjMesh, APentagonBecomesThreeTriangles) {
   const ClothTopology t = build(temp_obj(

@@ -262,6 +262,10 @@ TEST(SceneModulesInput, MissingAndUnknownKeys) {
   expect_module_error(
       R"(    {"type": "pin_motion", "keyframes": [{"t": 1, "offset": [0,0,0]}, {"t": 1, "offset": [1,0,0]}]})",
       "modules[0].keyframes[1].t", "must increase");
+  // Keys 5e-324 s apart would move a pin at an infinite speed.
+  expect_module_error(
+      R"(    {"type": "pin_motion", "keyframes": [{"t": 0, "offset": [0,0,0]}, {"t": 5e-324, "offset": [1,0,0]}]})",
+      "modules[0].keyframes[1].t", "by at least 1e-6 s");
   expect_module_error(R"(    {"type": "pin_motion"})", "modules[0]", "needs either 'keyframes'");
 }
 

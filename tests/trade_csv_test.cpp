@@ -95,7 +95,9 @@ TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
   const TradeTable back = parse_trade_csv(text, "x.csv");
   EXPECT_EQ(back.reference.change, -1);
   for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (!t.rows[i].ok()) EXPECT_TRUE(std::isnan(back.rows[i].position_error_max)) << i;
+    if (!t.rows[i].ok()) {
+      EXPECT_TRUE(std::isnan(back.rows[i].position_error_max)) << i;
+    }
 
   std::string legacy = text;
   for (std::size_t at; (at = legacy.find(",,")) != std::string::npos;)
@@ -158,6 +160,8 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
        "position_error_max", "nan", "not a finite number"},
       {"an empty error on a finished run", "rk4,dt,0.001,0.001,0,0.05", "0.05,", ",",
        "position_error_max", "", "not a finite number"},
+      {"more samples than an int holds", "# samples", "8", "4294967304", "# samples", "4294967304",
+       "must be at most 1000"},
       {"a step below the floor", "network,", "0.001,0.001", "1e-12,1e-12", "dt", "1e-12",
        "microsecond"},
       {"an unknown status", "rk4,dt,0.001,0.001,0,0.05", ",ok", ",fine", "status", "fine",
@@ -188,6 +192,22 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
     EXPECT_EQ(what.rfind("broken.csv:" + std::to_string(line) + ":", 0), 0u) << what;
     EXPECT_NE(what.find(c.message), std::string::npos) << what;
   }
+}
+
+// A measurement has one scene, one duration...: a second value for a key
+// would silently win (found by fuzzing). Sweep stops may repeat.
+TEST(TradeoffCsv, AMetadataKeyGivenTwiceIsNamed) {
+  const std::string good = trade_csv(csv_table());
+  const int line = line_of(good, "# samples");
+  const auto e = csv_error(edit_line(good, line, "# samples: 8", "# samples: 8\n# seconds: 9"));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), line + 1);
+  EXPECT_EQ(e->field(), "# seconds");
+  EXPECT_NE(e->message().find("given twice (first at line " +
+                              std::to_string(line_of(good, "# seconds")) + ")"),
+            std::string::npos)
+      << e->what();
+  EXPECT_EQ(parse_trade_csv(good, "x.csv").sweep_stops.size(), 2u);
 }
 
 TEST(TradeoffCsv, MissingPartsAreNamed) {

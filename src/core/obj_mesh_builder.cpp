@@ -76,11 +76,27 @@ void check_vertex(const std::string& text, std::size_t from, std::size_t end, st
   }
 }
 
+// The statements a cloth is built from, and those tinyobjloader must see for
+// the face indices to mean what the file says (texture coordinates, normals).
+// Groups, objects and smoothing groups are harmless.
+bool needed(const std::string& text, std::size_t from, std::size_t end) {
+  std::size_t k = from;
+  while (k < end && !blank(text[k]))
+    ++k;
+  const std::string keyword = text.substr(from, k - from);
+  for (const char* kept : {"v", "vt", "vn", "f", "o", "g", "s"})
+    if (keyword == kept) return true;
+  return false;
+}
+
 // One pass over the text before tinyobjloader sees it: refuses what would cost
 // it (or us) more than the file's size, and keeps the line of every face so
-// that errors found later can name it. Lines end as tinyobjloader ends them
-// (\n, \r\n or \r).
-std::vector<int> face_lines(const std::string& text, const std::string& path) {
+// that errors found later can name it. Every other statement (materials,
+// skin weights, lines, points, tags: nothing a cloth uses) is blanked, line
+// ends kept: tinyobjloader would otherwise open an `mtllib` file or cast a
+// huge `vw` joint id to int. Lines end as tinyobjloader ends them (\n, \r\n
+// or \r).
+std::vector<int> screen(std::string& text, const std::string& path) {
   std::vector<int> lines;
   std::size_t vertices = 0;
   int line = 1;
@@ -91,6 +107,9 @@ std::vector<int> face_lines(const std::string& text, const std::string& path) {
     std::size_t p = i;
     while (p < end && blank(text[p]))
       ++p;
+    if (p < end && text[p] != '#' && !needed(text, p, end))
+      std::fill(text.begin() + static_cast<std::ptrdiff_t>(p),
+                text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
     const bool face = p + 1 < end && text[p] == 'f' && blank(text[p + 1]);
     const bool vertex = p + 1 < end && text[p] == 'v' && blank(text[p + 1]);
     if (vertex) {
@@ -149,8 +168,8 @@ void triangulate(const std::vector<int>& corners, const std::vector<Vec3>& at,
 }  // namespace
 
 ClothTopology build_obj_mesh(const ObjMeshSpec& spec) {
-  const std::string text = read_text_file(spec.path, "OBJ file", kMaxMeshBytes);
-  const std::vector<int> lines = face_lines(text, spec.path);
+  std::string text = read_text_file(spec.path, "OBJ file", kMaxMeshBytes);
+  const std::vector<int> lines = screen(text, spec.path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // ours is linear in the corners and knows each face's line
   config.vertex_color = false;

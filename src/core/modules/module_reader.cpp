@@ -190,8 +190,10 @@ ModuleSpec read_pin_motion(const ModuleFields& m, const ClothTopology& topology,
       m.in().require_object(k.obj(), k.field());
       m.in().allow_only(k.obj(), k.field(), {"t", "offset"});
       const double t = k.required_within("t", limits::kDuration);
-      if (!s.keyframes.empty() && !(t > s.keyframes.back().first))
-        k.fail("t", "keyframe times must increase");
+      // A pin's speed is the offset over the time between keys: keys closer
+      // than the smallest step would give it one beyond any number.
+      if (!s.keyframes.empty() && !(t >= s.keyframes.back().first + limits::kTimeStep.low))
+        k.fail("t", "keyframe times must increase, by at least 1e-6 s");
       s.keyframes.emplace_back(t, k.required_vec3_within("offset", limits::kCoordinate));
     }
   } else {

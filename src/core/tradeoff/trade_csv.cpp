@@ -6,7 +6,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "input_error.h"
@@ -81,12 +84,16 @@ class Reader {
     return v;
   }
 
-  long count(const Field& f, const std::string& field, int line) const {
+  // A whole number in [0, max]: the type it is stored in holds it as written.
+  long count(const Field& f, const std::string& field, int line,
+             long max = std::numeric_limits<long>::max()) const {
     errno = 0;
     char* end = nullptr;
     const long v = std::strtol(f.text.c_str(), &end, 10);
     if (f.text.empty() || end != f.text.c_str() + f.text.size() || errno == ERANGE || v < 0)
       fail(field, "not a whole number >= 0: '" + f.text + "'", line, f.column);
+    if (v > max)
+      fail(field, "must be at most " + std::to_string(max) + ", got " + f.text, line, f.column);
     return v;
   }
 
@@ -178,6 +185,29 @@ class TradeCsvParser {
 
   void metadata(const std::string& key, const Field& v) {
     const std::string field = "# " + key;
+    // Each describes the one measurement: a second value would silently win.
+    static const std::set<std::string> kOnce = {"scene",
+                                                "scene_file",
+                                                "seconds",
+                                                "samples",
+                                                "cloth_size_m",
+                                                "energy_scale_j",
+                                                "reference_dt",
+                                                "reference_change",
+                                                "reference_rms_change",
+                                                "reference_change_by_sample",
+                                                "reference_target",
+                                                "reference_met",
+                                                "reference_stopped_by",
+                                                "reference_runs",
+                                                "reference_wall_seconds",
+                                                "wall_seconds"};
+    if (kOnce.count(key)) {
+      const auto [first, fresh] = seen_.emplace(key, line_);
+      if (!fresh)
+        in_.fail(field, "given twice (first at line " + std::to_string(first->second) + ")", line_,
+                 3);
+    }
     TradeTable& t = table_;
     ReferenceReport& r = t.reference;
     if (key == "scene") {
@@ -190,7 +220,7 @@ class TradeCsvParser {
       t.seconds = in_.real(v, field, line_, 0, true);
       have_.seconds = true;
     } else if (key == "samples") {
-      t.samples = static_cast<int>(in_.count(v, field, line_));
+      t.samples = static_cast<int>(in_.count(v, field, line_, 1000));  // as tradeoff --samples
       if (t.samples < 1) in_.fail(field, "must be >= 1", line_, v.column);
       have_.samples = true;
     } else if (key == "cloth_size_m") {
@@ -224,7 +254,7 @@ class TradeCsvParser {
     } else if (key == "reference_stopped_by") {
       r.stopped_by = v.text;
     } else if (key == "reference_runs") {
-      r.runs = static_cast<int>(in_.count(v, field, line_));
+      r.runs = static_cast<int>(in_.count(v, field, line_, std::numeric_limits<int>::max()));
     } else if (key == "reference_wall_seconds") {
       r.wall_seconds = in_.real(v, field, line_, 0, false);
     } else if (key == "sweep_stopped_by") {
@@ -302,6 +332,7 @@ class TradeCsvParser {
   }
 
   Reader in_;
+  std::map<std::string, int> seen_;  // metadata key -> its line
   TradeTable table_;
   int line_ = 0;
   bool have_header_ = false;
