@@ -1,0 +1,58 @@
+// Fuzzes the trade CSV reader, parse_trade_csv(). An accepted trade must hold
+// finite measurements (NaN only where the format says so: the errors of a run
+// that did not finish, and an unmeasured reference change, read as -1), and
+// settings whose step can be run: 1/dt finite.
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "fuzz_contract.h"
+#include "tradeoff/trade_csv.h"
+
+namespace neurocloth::fuzz {
+namespace {
+
+void check_trade(const Contract& c, const TradeTable& t) {
+  c.finite(t.seconds, "# seconds");
+  c.require(t.seconds > 0, "# seconds accepted <= 0");
+  c.require(t.samples >= 1, "# samples accepted < 1");
+  c.finite(t.cloth_size, "# cloth_size_m");
+  c.finite(t.energy_scale, "# energy_scale_j");
+  c.finite(t.wall_seconds, "# wall_seconds");
+  const ReferenceReport& r = t.reference;
+  c.finite(r.dt, "# reference_dt");
+  c.finite(r.change, "# reference_change");
+  c.finite(r.rms_change, "# reference_rms_change");
+  for (double v : r.change_by_sample)
+    c.finite(v, "# reference_change_by_sample");
+  c.finite(r.target, "# reference_target");
+  c.finite(r.wall_seconds, "# reference_wall_seconds");
+  c.require(!t.rows.empty(), "a trade accepted with no rows");
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const TradeRow& row = t.rows[i];
+    const std::string f = "row " + std::to_string(i + 1) + " ";
+    c.finite(row.value, f + "value");
+    c.finite(row.dt, f + "dt");
+    c.require(row.dt > 0, f + "dt accepted <= 0");
+    // `simulate --accuracy` runs the picked row's dt: seconds / dt steps.
+    c.require(std::isfinite(1.0 / row.dt), f + "dt accepted as " + show(row.dt) +
+                                               " (1/dt overflows: the setting cannot be run)");
+    c.require(row.steps >= 0 && row.force_evaluations >= 0 && row.rejected_steps >= 0,
+              f + "a negative count accepted");
+    for (double v : {row.position_error_max, row.position_error_rms, row.energy_error,
+                     row.wall_per_simulated_second})
+      c.require(std::isfinite(v) || (std::isnan(v) && !row.ok()),
+                f + "a measurement accepted as " + show(v) + " on a run with status " + row.status);
+  }
+}
+
+}  // namespace
+}  // namespace neurocloth::fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace neurocloth;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const auto trade = fuzz::accepted("trade_csv", [&] { return parse_trade_csv(text, "fuzz.csv"); });
+  if (trade) fuzz::check_trade(fuzz::Contract("trade_csv"), *trade);
+  return 0;
+}
