@@ -4,6 +4,7 @@
 // object in which every number is finite. Anything else -- another exception,
 // a crash, a non-finite value accepted -- is a finding: the harness prints what
 // it saw and aborts, so libFuzzer keeps the input.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -42,6 +43,12 @@ auto accepted(const char* reader, Read&& read) -> std::optional<decltype(read())
   } catch (...) {
     finding(reader, "escaped an exception that is not a std::exception");
   }
+}
+
+// Every component finite and the squared norm too (see Contract::vector): the
+// cheap test hot loops make before wording a message.
+inline bool finite_norm(const Vec3& v) {
+  return std::isfinite(v.squaredNorm());
 }
 
 // The checks on an accepted object; `what` names the value ("gravity").
