@@ -1,9 +1,14 @@
 // Fuzzes the trade CSV reader, parse_trade_csv(). An accepted trade must hold
 // finite measurements (NaN only where the format says so: the errors of a run
 // that did not finish, and an unmeasured reference change, read as -1), and
-// settings whose step can be run: 1/dt finite.
+// settings whose step can be run: 1/dt finite, and the counts it was written
+// (not truncated to an int).
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "fuzz_contract.h"
@@ -46,6 +51,43 @@ void check_trade(const Contract& c, const TradeTable& t) {
   }
 }
 
+// The whole number a "# key: N" line before the header says, as written
+// (the last such line wins, as in the reader); nullopt when there is none or
+// it is not a plain decimal number.
+std::optional<long long> written_count(const std::string& text, const std::string& key) {
+  std::optional<long long> value;
+  const std::string prefix = "# " + key + ": ";
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line[0] != '#') break;  // the header: metadata ends
+    if (line.compare(0, prefix.size(), prefix) != 0 || line.find(": ") != prefix.size() - 2)
+      continue;
+    errno = 0;
+    char* end = nullptr;
+    const char* digits = line.c_str() + prefix.size();
+    const long long v = std::strtoll(digits, &end, 10);
+    value =
+        errno == 0 && end != digits && *end == '\0' ? std::optional<long long>(v) : std::nullopt;
+  }
+  return value;
+}
+
+// An accepted count is the one the file wrote, not a truncation of it.
+void check_counts(const Contract& c, const TradeTable& t, const std::string& text) {
+  const auto samples = written_count(text, "samples");
+  if (samples)
+    c.require(*samples == t.samples, "# samples: " + std::to_string(*samples) + " accepted as " +
+                                         std::to_string(t.samples));
+  const auto runs = written_count(text, "reference_runs");
+  if (runs)
+    c.require(*runs == t.reference.runs, "# reference_runs: " + std::to_string(*runs) +
+                                             " accepted as " + std::to_string(t.reference.runs));
+}
+
 }  // namespace
 }  // namespace neurocloth::fuzz
 
@@ -53,6 +95,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace neurocloth;
   const std::string text(reinterpret_cast<const char*>(data), size);
   const auto trade = fuzz::accepted("trade_csv", [&] { return parse_trade_csv(text, "fuzz.csv"); });
-  if (trade) fuzz::check_trade(fuzz::Contract("trade_csv"), *trade);
+  if (!trade) return 0;
+  const fuzz::Contract c("trade_csv");
+  fuzz::check_trade(c, *trade);
+  fuzz::check_counts(c, *trade, text);
   return 0;
 }
