@@ -2,13 +2,14 @@
 // finite measurements (NaN only where the format says so: the errors of a run
 // that did not finish, and an unmeasured reference change, read as -1), and
 // settings whose step can be run: 1/dt finite, and the counts it was written
-// (not truncated to an int).
+// (not truncated to an int), each "# key" written once.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "fuzz_contract.h"
@@ -76,12 +77,51 @@ std::optional<long long> written_count(const std::string& text, const std::strin
   return value;
 }
 
+// The first "# key" (one the reader knows, other than sweep_stopped_by, which
+// repeats by design) written twice before the header; "" when none is. The
+// reader keeps the last, as nlohmann does with a JSON key.
+std::string repeated_key(const std::string& text) {
+  std::set<std::string> seen;
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line[0] != '#') break;  // the header: metadata ends
+    const std::size_t colon = line.find(": ");
+    if (colon == std::string::npos || line.compare(0, 2, "# ") != 0) continue;
+    const std::string key = line.substr(2, colon - 2);
+    static const std::set<std::string> kKeys = {"scene",
+                                                "scene_file",
+                                                "seconds",
+                                                "samples",
+                                                "cloth_size_m",
+                                                "energy_scale_j",
+                                                "reference_dt",
+                                                "reference_change",
+                                                "reference_rms_change",
+                                                "reference_change_by_sample",
+                                                "reference_target",
+                                                "reference_met",
+                                                "reference_stopped_by",
+                                                "reference_runs",
+                                                "reference_wall_seconds",
+                                                "wall_seconds"};
+    if (kKeys.count(key) && !seen.insert(key).second) return key;
+  }
+  return {};
+}
+
 // An accepted count is the one the file wrote, not a truncation of it.
 void check_counts(const Contract& c, const TradeTable& t, const std::string& text) {
   const auto samples = written_count(text, "samples");
   if (samples)
     c.require(*samples == t.samples, "# samples: " + std::to_string(*samples) + " accepted as " +
                                          std::to_string(t.samples));
+  const std::string repeated = repeated_key(text);
+  c.require(repeated.empty(),
+            "accepted '# " + repeated + "' written twice (the last silently wins)");
   const auto runs = written_count(text, "reference_runs");
   if (runs)
     c.require(*runs == t.reference.runs, "# reference_runs: " + std::to_string(*runs) +
