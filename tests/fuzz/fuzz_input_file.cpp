@@ -16,6 +16,10 @@ InputFile::InputFile(const std::string& name) {
 }
 
 InputFile::~InputFile() {
+  remove();
+}
+
+void InputFile::remove() {
   std::remove(path_.c_str());
 }
 

@@ -2,7 +2,8 @@
 // Readers that take a path (the OBJ builder, the window's script reader) get
 // the fuzzer's bytes through a file of this process's own, in memory-backed
 // /dev/shm when there is one: parallel fuzzing jobs never share it, and it is
-// removed when the process exits.
+// removed as soon as the reader has read it (only a crash inside the reader
+// leaves it behind).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -19,6 +20,9 @@ class InputFile {
 
   // Replaces the file's contents with `data`; returns its path.
   const std::string& write(const std::uint8_t* data, std::size_t size);
+  // Deletes the file once the reader is done with it: a finding aborts the
+  // process without running destructors, and should leave nothing behind.
+  void remove();
   const std::string& path() const { return path_; }
 
  private:

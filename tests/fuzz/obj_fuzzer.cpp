@@ -62,6 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ObjMeshSpec spec;
   spec.path = file.write(data, size);
   const auto mesh = fuzz::accepted("obj", [&] { return build_obj_mesh(spec); });
+  file.remove();
   if (mesh) fuzz::check_mesh(fuzz::Contract("obj"), *mesh);
   return 0;
 }

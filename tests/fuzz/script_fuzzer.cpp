@@ -41,6 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static fuzz::InputFile file("script.json");
   const std::string& path = file.write(data, size);
   const auto script = fuzz::accepted("script", [&] { return load_script(path); });
+  file.remove();
   if (script)
     fuzz::check_script(fuzz::Contract("script"), *script,
                        std::string(reinterpret_cast<const char*>(data), size));
