@@ -2,7 +2,9 @@
 // 11), one test per root cause, run as the campaign ran them: a real process,
 // real files. Each failed before its fix (a crash, a hang, a NaN or null
 // written, or an error naming no file); docs/robustness.md lists them.
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -117,7 +119,12 @@ TEST_F(HostileInput, HugeMeshValuesAreRefused) {
   };
   const std::string a = mesh_scene("a.json", huge, "0.5");
   expect_input_error({"simulate", a, "--seconds", "0.01", "--out", result_path()},
-                     {a, "cloth.mesh", "10 km"});
+                     {huge + ":10:", "vertex 9", "1e10", a, "cloth.mesh.obj"});
+  // Each vertex in range, scaled and moved out of it.
+  const std::string far = write("far.obj", with(square, "v 1 0 1", "v 1e5 0 1"));
+  const std::string d = mesh_scene("d.json", far, "0.5");
+  expect_input_error({"simulate", d, "--seconds", "0.01", "--out", result_path()},
+                     {d, "cloth.mesh", "10 km"});
   const std::string b = mesh_scene("b.json", assets_directory() + "/meshes/square.obj", "1e308");
   expect_input_error({"simulate", b, "--seconds", "0.01", "--out", result_path()},
                      {b, "cloth.mesh.scale"});
@@ -239,18 +246,37 @@ TEST_F(HostileInput, AnEndlessRunReportsProgressAndCtrlCKeepsTheStateReached) {
 }
 
 // Endless input: /dev/zero as a rule base, a trade or a mesh was read until
-// memory ran out (std::bad_alloc, or the machine's memory).
+// memory ran out (std::bad_alloc, or the machine's memory). A device is
+// named as one; a pipe that never ends, or a file too large, by its size.
 TEST_F(HostileInput, EndlessFilesAreRefusedBySize) {
-  expect_rules_refused("/dev/zero", {"/dev/zero", "larger than 4 MiB"});
+  expect_rules_refused("/dev/zero", {"/dev/zero", "is a device"});
   expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "1", "--accuracy", "0.5",
                       "--trade", "/dev/zero", "--out", result_path()},
-                     {"/dev/zero", "larger than"});
+                     {"/dev/zero", "is a device"});
   const std::string scene = write("zero.json", with(read_text(scene_asset("mesh_square")),
                                                     "\"../meshes/square.obj\"", "\"/dev/zero\""));
   expect_input_error({"simulate", scene, "--seconds", "0.01", "--out", result_path()},
-                     {"/dev/zero", "larger than"});
+                     {"/dev/zero", "is a device"});
   expect_input_error({"simulate", "/dev/zero", "--seconds", "0.01", "--out", result_path()},
-                     {"/dev/zero", "larger than"});
+                     {"/dev/zero", "is a device"});
+
+  // `yes` writes into a named pipe for as long as anyone reads it.
+  const std::string pipe = (dir_ / "endless.fcl").string();
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  std::vector<std::string> args = {"material", "--rules", pipe};
+  for (const auto& a : cloth_inputs())
+    args.push_back(a);
+  expect_input_error(args, {pipe, "larger than 4 MiB"}, 120, "(yes >" + quote(pipe) + " &); ");
+
+  // A file one byte past the limit is refused by its size, before it is read.
+  const std::string big = (dir_ / "big.fcl").string();
+  fs::copy_file(kRules, big);
+  fs::resize_file(big, (4u << 20) + 1);
+  args[2] = big;
+  expect_input_error(args, {big, "larger than 4 MiB"});
+  // Should the pipe not have been read, `yes` would wait on it for ever.
+  const int fd = open(pipe.c_str(), O_RDONLY | O_NONBLOCK);
+  if (fd >= 0) close(fd);
 }
 
 // A key written twice was silently resolved (the last won).

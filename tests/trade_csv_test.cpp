@@ -77,37 +77,6 @@ TEST(TradeoffCsv, RoundTrips) {
   }
 }
 
-// A setting that did not finish has no error: the file says so with an empty
-// field, never "nan" or "inf" (no file of ours holds them); and the files
-// written before that, with "nan", still read.
-TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
-  TradeTable t = csv_table();
-  t.reference.change = -1;  // never compared
-  ASSERT_FALSE(t.rows[4].ok());
-  t.rows[4].wall_per_simulated_second = std::numeric_limits<double>::infinity();
-  const std::string text = trade_csv(t);
-  for (const char* bad : {"nan", "inf", "NaN", "Inf"})
-    EXPECT_EQ(text.find(bad), std::string::npos) << bad << " in:\n" << text;
-  bool diverged = false;
-  for (const TradeRow& row : t.rows)
-    diverged = diverged || !row.ok();
-  ASSERT_TRUE(diverged) << "the hand-made trade needs a row that did not finish";
-  const TradeTable back = parse_trade_csv(text, "x.csv");
-  EXPECT_EQ(back.reference.change, -1);
-  for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (!t.rows[i].ok()) {
-      EXPECT_TRUE(std::isnan(back.rows[i].position_error_max)) << i;
-    }
-
-  std::string legacy = text;
-  for (std::size_t at; (at = legacy.find(",,")) != std::string::npos;)
-    legacy.replace(at, 2, ",nan,");
-  for (std::size_t at; (at = legacy.find(": none\n")) != std::string::npos;)
-    legacy.replace(at, 7, ": nan\n");
-  ASSERT_NE(legacy, text);
-  EXPECT_EQ(trade_csv(parse_trade_csv(legacy, "old.csv")), text);
-}
-
 // The InputError parse_trade_csv throws for `text`, or a failure.
 std::optional<InputError> csv_error(const std::string& text) {
   try {
@@ -158,11 +127,9 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
       {"a fraction of a step count", "network,", ",0,", ",1.5,", "steps", "1.5", "whole number"},
       {"no error on a finished run", "rk4,dt,0.001,0.001,0,0.05", "0.05", "nan",
        "position_error_max", "nan", "not a finite number"},
-      {"an empty error on a finished run", "rk4,dt,0.001,0.001,0,0.05", "0.05,", ",",
-       "position_error_max", "", "not a finite number"},
       {"more samples than an int holds", "# samples", "8", "4294967304", "# samples", "4294967304",
        "must be at most 1000"},
-      {"a step below the floor", "network,", "0.001,0.001", "1e-12,1e-12", "dt", "1e-12",
+      {"a step below the floor", "network,", "0.001,0.001", "0.001,1e-12", "dt", "1e-12",
        "microsecond"},
       {"an unknown status", "rk4,dt,0.001,0.001,0,0.05", ",ok", ",fine", "status", "fine",
        "must be ok, diverged or stopped"},
@@ -192,6 +159,45 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
     EXPECT_EQ(what.rfind("broken.csv:" + std::to_string(line) + ":", 0), 0u) << what;
     EXPECT_NE(what.find(c.message), std::string::npos) << what;
   }
+}
+
+// A setting that did not finish has no error: the file says so with an empty
+// field, never "nan" or "inf" (no file of ours holds them); and the files
+// written before that, with "nan", still read.
+TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
+  TradeTable t = csv_table();
+  t.reference.change = -1;  // never compared
+  ASSERT_FALSE(t.rows[4].ok());
+  t.rows[4].wall_per_simulated_second = std::numeric_limits<double>::infinity();
+  const std::string text = trade_csv(t);
+  for (const char* bad : {"nan", "inf", "NaN", "Inf"})
+    EXPECT_EQ(text.find(bad), std::string::npos) << bad << " in:\n" << text;
+  bool diverged = false;
+  for (const TradeRow& row : t.rows)
+    diverged = diverged || !row.ok();
+  ASSERT_TRUE(diverged) << "the hand-made trade needs a row that did not finish";
+  const TradeTable back = parse_trade_csv(text, "x.csv");
+  EXPECT_EQ(back.reference.change, -1);
+  for (std::size_t i = 0; i < t.rows.size(); ++i)
+    if (!t.rows[i].ok()) {
+      EXPECT_TRUE(std::isnan(back.rows[i].position_error_max)) << i;
+    }
+
+  // Empty is "not measured" only where a run did not finish.
+  const int finished = line_of(text, "rk4,dt,0.001,0.001,0,0.05");
+  const auto e = csv_error(edit_line(text, finished, "0.05,", ","));
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), finished);
+  EXPECT_EQ(e->field(), "position_error_max");
+  EXPECT_NE(e->message().find("not a finite number: ''"), std::string::npos) << e->what();
+
+  std::string legacy = text;
+  for (std::size_t at; (at = legacy.find(",,")) != std::string::npos;)
+    legacy.replace(at, 2, ",nan,");
+  for (std::size_t at; (at = legacy.find(": none\n")) != std::string::npos;)
+    legacy.replace(at, 7, ": nan\n");
+  ASSERT_NE(legacy, text);
+  EXPECT_EQ(trade_csv(parse_trade_csv(legacy, "old.csv")), text);
 }
 
 // A measurement has one scene, one duration...: a second value for a key

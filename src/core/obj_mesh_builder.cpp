@@ -19,6 +19,7 @@ namespace {
 // Cloth meshes are triangles and quads; a polygon with more corners than this
 // is not a cloth face but a hostile one (each corner costs the triangulation).
 constexpr std::size_t kMaxFaceCorners = 256;
+constexpr double kMaxCoordinate = 1e10;
 // As many nodes as the largest grid a scene may declare.
 constexpr std::size_t kMaxVertices = 4'000'000;
 
@@ -71,8 +72,13 @@ void check_vertex(const std::string& text, std::size_t from, std::size_t end, st
     const std::string token = text.substr(start, k - start);
     const std::string which = "vertex " + std::to_string(vertex) + " (" + "xyz"[axis] + ")";
     if (token.empty()) throw InputError(path, "v", which + " is missing", line);
-    if (!decimal(token) || !std::isfinite(std::strtod(token.c_str(), nullptr)))
+    const double value = decimal(token) ? std::strtod(token.c_str(), nullptr) : NAN;
+    if (!std::isfinite(value))
       throw InputError(path, "v", which + ": '" + token + "' is not a finite number", line);
+    // Before mesh.scale: a mesh in millimetres is 1e3 times its size in
+    // metres; none spans 1e10 in any unit (the scene checks the scaled cloth).
+    if (std::abs(value) > kMaxCoordinate)
+      throw InputError(path, "v", which + ": " + token + " is beyond +-1e10 in any unit", line);
   }
 }
 

@@ -51,7 +51,7 @@ inline constexpr Limit kDensity{0, 1e4, "kg/m^3", "air or water, not lead"};
 inline constexpr Limit kCoefficient{0, 100, "", "an aerodynamic coefficient stays below 100"};
 inline constexpr Limit kGustAmplitude{0, 10, "", "a gust is at most ten times the mean wind"};
 // Time.
-inline constexpr Limit kTimeStep{1e-6, 10, "s",
+inline constexpr Limit kTimeStep{1e-6, 1e9, "s",
                                  "a step below a microsecond would take millions per second"};
 inline constexpr Limit kDuration{0, 1e6, "s", "a scene's motion is scripted over at most 1e6 s"};
 inline constexpr Limit kStepFraction{

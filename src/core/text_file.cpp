@@ -20,22 +20,30 @@ std::string size_name(std::size_t bytes) {
 }  // namespace
 
 std::string read_text_file(const std::string& path, const char* what, std::size_t max_bytes) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
+  const fs::file_status status = fs::status(path, ec);
+  const std::string too_large = std::string("larger than ") + size_name(max_bytes) + ": not a " +
+                                what + " this program reads";
+  if (fs::is_directory(status))
     throw InputError(path, "", std::string("is a directory, not a ") + what);
+  // A device has no end of file (/dev/zero, /dev/urandom) or blocks (a tty).
+  if (fs::is_character_file(status) || fs::is_block_file(status) || fs::is_socket(status))
+    throw InputError(path, "", std::string("is a device, not a ") + what);
+  if (fs::is_regular_file(status)) {
+    const auto size = fs::file_size(path, ec);
+    if (!ec && size > max_bytes) throw InputError(path, "", too_large);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", std::string("cannot open ") + what);
-  // Read in blocks up to one byte past the limit: a regular file's size could
-  // be asked first, but a pipe or a device has none.
+  // Read in blocks up to one byte past the limit all the same: a pipe has no
+  // size, and a file may grow while it is read.
   std::string text;
   char block[1 << 16];
   while (in) {
     in.read(block, sizeof block);
     text.append(block, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_bytes)
-      throw InputError(path, "",
-                       std::string("larger than ") + size_name(max_bytes) + ": not a " + what +
-                           " this program reads");
+    if (text.size() > max_bytes) throw InputError(path, "", too_large);
   }
   if (in.bad()) throw InputError(path, "", std::string("cannot read ") + what);
   return text;
