@@ -1,6 +1,6 @@
-// RESULT.json's writer: a number that is not finite is refused before
-// anything is written (JSON would hold null where a reader expects a number).
-#include "result_json.h"
+// The JSON writer (RESULT.json, the window's report): a number that is not
+// finite is refused before anything is written (JSON would hold null).
+#include "json_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -13,14 +13,14 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch() {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "result_json_test" /
+  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "json_writer_test" /
                        ::testing::UnitTest::GetInstance()->current_test_info()->name();
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
 
-TEST(ResultJson, FindsTheFirstNumberThatIsNotFinite) {
+TEST(JsonWriter, FindsTheFirstNumberThatIsNotFinite) {
   nlohmann::json doc = {{"status", "ok"}, {"energy", {{"kinetic", 1.0}, {"total", 2.0}}}};
   doc["positions"] = {{0.0, 1.0, 2.0}, {3.0, 4.0, 5.0}};
   EXPECT_FALSE(first_non_finite(doc));
@@ -30,7 +30,7 @@ TEST(ResultJson, FindsTheFirstNumberThatIsNotFinite) {
   EXPECT_EQ(first_non_finite(doc), "energy.total");
 }
 
-TEST(ResultJson, ANonFiniteNumberIsNeverWritten) {
+TEST(JsonWriter, ANonFiniteNumberIsNeverWritten) {
   const fs::path dir = scratch();
   const std::string path = (dir / "result.json").string();
   nlohmann::json doc = {{"time", 1.5}, {"energy", {{"total", std::nan("")}}}};
