@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <iterator>
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "fuzz_contract.h"
 #include "tradeoff/trade_csv.h"
@@ -52,12 +54,9 @@ void check_trade(const Contract& c, const TradeTable& t) {
   }
 }
 
-// The whole number a "# key: N" line before the header says, as written
-// (the last such line wins, as in the reader); nullopt when there is none or
-// it is not a plain decimal number.
-std::optional<long long> written_count(const std::string& text, const std::string& key) {
-  std::optional<long long> value;
-  const std::string prefix = "# " + key + ": ";
+// The "#" lines before the header, without their line ends; blank lines skipped.
+std::vector<std::string> metadata_lines(const std::string& text) {
+  std::vector<std::string> lines;
   for (std::size_t pos = 0; pos < text.size();) {
     const std::size_t eol = std::min(text.find('\n', pos), text.size());
     std::string line = text.substr(pos, eol - pos);
@@ -65,6 +64,18 @@ std::optional<long long> written_count(const std::string& text, const std::strin
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     if (line[0] != '#') break;  // the header: metadata ends
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+// The whole number a "# key: N" line before the header says, as written
+// (the last such line wins, as in the reader); nullopt when there is none or
+// it is not a plain decimal number.
+std::optional<long long> written_count(const std::string& text, const std::string& key) {
+  std::optional<long long> value;
+  const std::string prefix = "# " + key + ": ";
+  for (const std::string& line : metadata_lines(text)) {
     if (line.compare(0, prefix.size(), prefix) != 0 || line.find(": ") != prefix.size() - 2)
       continue;
     errno = 0;
@@ -82,32 +93,12 @@ std::optional<long long> written_count(const std::string& text, const std::strin
 // reader keeps the last, as nlohmann does with a JSON key.
 std::string repeated_key(const std::string& text) {
   std::set<std::string> seen;
-  for (std::size_t pos = 0; pos < text.size();) {
-    const std::size_t eol = std::min(text.find('\n', pos), text.size());
-    std::string line = text.substr(pos, eol - pos);
-    pos = eol + 1;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    if (line[0] != '#') break;  // the header: metadata ends
+  for (const std::string& line : metadata_lines(text)) {
     const std::size_t colon = line.find(": ");
     if (colon == std::string::npos || line.compare(0, 2, "# ") != 0) continue;
     const std::string key = line.substr(2, colon - 2);
-    static const std::set<std::string> kKeys = {"scene",
-                                                "scene_file",
-                                                "seconds",
-                                                "samples",
-                                                "cloth_size_m",
-                                                "energy_scale_j",
-                                                "reference_dt",
-                                                "reference_change",
-                                                "reference_rms_change",
-                                                "reference_change_by_sample",
-                                                "reference_target",
-                                                "reference_met",
-                                                "reference_stopped_by",
-                                                "reference_runs",
-                                                "reference_wall_seconds",
-                                                "wall_seconds"};
+    static const std::set<std::string> kKeys(std::begin(kTradeMetadataKeys),
+                                             std::end(kTradeMetadataKeys));
     if (kKeys.count(key) && !seen.insert(key).second) return key;
   }
   return {};

@@ -186,22 +186,8 @@ class TradeCsvParser {
   void metadata(const std::string& key, const Field& v) {
     const std::string field = "# " + key;
     // Each describes the one measurement: a second value would silently win.
-    static const std::set<std::string> kOnce = {"scene",
-                                                "scene_file",
-                                                "seconds",
-                                                "samples",
-                                                "cloth_size_m",
-                                                "energy_scale_j",
-                                                "reference_dt",
-                                                "reference_change",
-                                                "reference_rms_change",
-                                                "reference_change_by_sample",
-                                                "reference_target",
-                                                "reference_met",
-                                                "reference_stopped_by",
-                                                "reference_runs",
-                                                "reference_wall_seconds",
-                                                "wall_seconds"};
+    static const std::set<std::string> kOnce(std::begin(kTradeMetadataKeys),
+                                             std::end(kTradeMetadataKeys));
     if (kOnce.count(key)) {
       const auto [first, fresh] = seen_.emplace(key, line_);
       if (!fresh)

@@ -23,6 +23,25 @@ inline constexpr const char* kTradeColumns[] = {"method",
                                                 "rejected_steps",
                                                 "status"};
 
+// The "# key: value" lines that describe the measurement, each at most once
+// (sweep_stopped_by, one per stopped sweep, may repeat).
+inline constexpr const char* kTradeMetadataKeys[] = {"scene",
+                                                     "scene_file",
+                                                     "seconds",
+                                                     "samples",
+                                                     "cloth_size_m",
+                                                     "energy_scale_j",
+                                                     "reference_dt",
+                                                     "reference_change",
+                                                     "reference_rms_change",
+                                                     "reference_change_by_sample",
+                                                     "reference_target",
+                                                     "reference_met",
+                                                     "reference_stopped_by",
+                                                     "reference_runs",
+                                                     "reference_wall_seconds",
+                                                     "wall_seconds"};
+
 std::string trade_csv(const TradeTable& table);
 
 // Reads what trade_csv wrote. Throws InputError naming `path`, the line and
