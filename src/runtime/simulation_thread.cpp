@@ -87,7 +87,10 @@ struct SimulationThread::Impl {
     return o;
   }
 
-  double wall() const { return std::chrono::duration<double>(Clock::now() - origin).count(); }
+  double wall() const {
+    if (options.clock) return options.clock();
+    return std::chrono::duration<double>(Clock::now() - origin).count();
+  }
 
   void start() {
     generation = live.generation();
