@@ -55,7 +55,7 @@ class Viewer : public ::testing::Test {
   // depend on how long it takes, so it is generous for a sanitizer build on a
   // loaded machine.
   Outcome run(const std::vector<std::string>& args, bool display = true,
-              int timeout_seconds = 180) const {
+              int timeout_seconds = 600) const {
     Outcome r = run_once(args, display, timeout_seconds);
     for (int retry = 0; retry < 3 && display && r.err.find("xvfb-run: error") != std::string::npos;
          ++retry)
