@@ -51,8 +51,11 @@ class Viewer : public ::testing::Test {
   // `display`: under a fresh 1280x720 Xvfb; otherwise with no display at all.
   // Two xvfb-run -a starting at once may pick the same display number and one
   // then fails to start its server: that run is retried, it says nothing of ours.
+  // The timeout only catches a hang: a lockstep session's outcome does not
+  // depend on how long it takes, so it is generous for a sanitizer build on a
+  // loaded machine.
   Outcome run(const std::vector<std::string>& args, bool display = true,
-              int timeout_seconds = 40) const {
+              int timeout_seconds = 600) const {
     Outcome r = run_once(args, display, timeout_seconds);
     for (int retry = 0; retry < 3 && display && r.err.find("xvfb-run: error") != std::string::npos;
          ++retry)
@@ -67,12 +70,15 @@ class Viewer : public ::testing::Test {
     return test::run_process(prelude, NEUROCLOTH_VIEWER, args, timeout_seconds, dir_);
   }
 
-  // Runs `scene` with `events` and returns the report (failing the test on a bad exit).
+  // Runs `scene` with `events` under --lockstep and returns the report (failing
+  // the test on a bad exit). Lockstep: event times are simulated seconds and each
+  // frame advances the simulation by exactly 1/60 s, so what a session does
+  // never depends on how fast or how loaded the machine is.
   json session(const std::string& scene, const json& events,
                const std::vector<std::string>& extra = {}, const std::string& name = "run") {
     const std::string script = write_script(name + "_script.json", events);
     const std::string report = path(name + "_report.json").string();
-    std::vector<std::string> args = {scene, "--script", script, "--report", report};
+    std::vector<std::string> args = {scene, "--lockstep", "--script", script, "--report", report};
     args.insert(args.end(), extra.begin(), extra.end());
     const Outcome r = run(args);
     EXPECT_EQ(r.code, 0) << "stderr: " << r.err;

@@ -19,3 +19,11 @@ target_compile_definitions(viewer_tests PRIVATE NEUROCLOTH_VIEWER="$<TARGET_FILE
   NEUROCLOTH_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tmp")
 add_dependencies(viewer_tests neurocloth)
 gtest_discover_tests(viewer_tests PROPERTIES LABELS viewer DISCOVERY_TIMEOUT 60)
+
+# The window's soak (random scripts in --lockstep, session after session): run
+# by .ci/soak in the ASan build, not by ctest (docs/viewer.md, "Soak").
+add_executable(viewer_soak viewer_soak.cpp viewer_soak_script.cpp)
+target_link_libraries(viewer_soak PRIVATE neurocloth_core nlohmann_json::nlohmann_json)
+target_compile_definitions(viewer_soak PRIVATE NEUROCLOTH_VIEWER="$<TARGET_FILE:neurocloth>"
+  NEUROCLOTH_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+add_dependencies(viewer_soak neurocloth)

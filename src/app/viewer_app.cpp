@@ -30,7 +30,7 @@ ViewerApp::ViewerApp(ViewerWindow& window, SimulationThread& sim, const Scene& s
       camera_(camera),
       start_camera_(camera),
       renderer_(std::make_unique<Renderer>()),
-      sink_([this](SimCommand c) { sim_.post(std::move(c)); }),
+      sink_([this](SimCommand c) { post(std::move(c)); }),
       handler_({sim_, camera_, requests_, sink_, [this](int node) { return node_mass(node); },
                 &report_}) {
   if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
@@ -50,15 +50,35 @@ double ViewerApp::seconds_since_start() const {
 
 int ViewerApp::run() {
   start_ = Clock::now();
-  while (!quit_ && !window_.close_requested() && !handler_.quit_requested()) {
-    frame(seconds_since_start());
+  for (long frames = 0; !quit_ && !window_.close_requested() && !handler_.quit_requested();
+       ++frames) {
+    if (options_.lockstep) {
+      // The frame sees the simulation exactly where its clock says: the
+      // previous frame's Advance (and everything posted before it) is done.
+      sim_.wait_for_commands();
+      frame(static_cast<double>(frames) * kLockstepFrame);
+      // Not waited for here: the simulation steps while this frame is shown.
+      sim_.post(Advance{kLockstepFrame});
+    } else {
+      frame(seconds_since_start());
+    }
     if (player_ && player_->done()) quit_ = true;
   }
   return finish();
 }
 
+// Under --lockstep every command is applied before the window reads anything
+// again (a pick, Space's toggle, the next snapshot), so what a frame sees never
+// depends on how fast the simulation thread happened to take the queue.
+void ViewerApp::post(SimCommand command) {
+  sim_.post(std::move(command));
+  if (options_.lockstep) sim_.wait_for_commands();
+}
+
 void ViewerApp::frame(double elapsed) {
   elapsed_ = elapsed;
+  // Frame rates are wall time whatever clock the script follows.
+  const double wall = options_.lockstep ? seconds_since_start() : elapsed;
   window_.poll();
   if (player_) player_->advance(elapsed, *this);
   const std::shared_ptr<const FrameSnapshot> snapshot = sim_.latest();
@@ -66,7 +86,7 @@ void ViewerApp::frame(double elapsed) {
   follow(status, *snapshot);
   handler_.set_drag_gain(values_.drag_gain);
   handler_.update();
-  stats_.sample(elapsed, status);
+  stats_.sample(wall, status);
   note_errors(elapsed, status);
   carry_out_requests(*snapshot);
   if (window_.minimised()) {
@@ -76,9 +96,9 @@ void ViewerApp::frame(double elapsed) {
     return;
   }
   draw(status, *snapshot);
-  if (last_drawn_ >= 0) stats_.frame(elapsed, elapsed - last_drawn_);
-  last_drawn_ = elapsed;
-  pace(elapsed);
+  if (last_drawn_ >= 0) stats_.frame(wall, wall - last_drawn_);
+  last_drawn_ = wall;
+  pace(wall);
 }
 
 // Sleeps out the rest of a frame under the fps cap: the core is the simulation's.

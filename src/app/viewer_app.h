@@ -3,7 +3,8 @@
 // takes the newest published snapshot and status (never the live simulation),
 // hands input to the InputHandler, draws the snapshot with the Renderer and
 // the panels with ImGui. A minimised window draws nothing and the simulation
-// goes on.
+// goes on. Under --lockstep each frame advances the simulation by one fixed
+// step of simulated time and the next frame waits for it.
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -36,7 +37,9 @@ class ViewerApp : private ScriptPlayer::Target {
   int run();
 
  private:
+  // `elapsed`: the script's clock (simulated s under --lockstep, else wall s).
   void frame(double elapsed);
+  void post(SimCommand command);  // to the simulation thread
   void pace(double frame_start);
   double seconds_since_start() const;
   void follow(const SimulationStatus& status, const FrameSnapshot& snapshot);
@@ -82,8 +85,8 @@ class ViewerApp : private ScriptPlayer::Target {
   std::optional<ScriptPlayer> player_;
   bool quit_ = false;
   std::chrono::steady_clock::time_point start_;  // the first frame
-  double elapsed_ = 0;                           // wall s since the first frame, at this frame
-  double last_drawn_ = -1;
+  double elapsed_ = 0;      // the script's clock at this frame (simulated s under --lockstep)
+  double last_drawn_ = -1;  // wall s
   std::string reported_ui_error_, reported_sim_error_;
 };
 

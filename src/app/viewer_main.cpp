@@ -48,6 +48,7 @@ int run(const ViewerOptions& options) {
   // take a core the simulation wants.
   SimulationThread::Options run;
   run.start_paused = options.paused;
+  run.lockstep = options.lockstep;
   SimulationThread sim(scene, run);
   yield_to_simulation();
   ViewerWindow window(options.width, options.height, "neurocloth - " + scene.name, options.vsync);

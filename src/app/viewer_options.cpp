@@ -20,9 +20,14 @@ std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& o)
   app.add_flag("!--no-vsync", o.vsync, "Do not wait for the display's refresh when swapping");
   app.add_option("--max-fps", o.max_fps, "Frames per second at most; 0: as many as it can draw")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--sim-only", o.sim_only,
-                 "Run the simulation without a window for SECONDS (speed reference)")
-      ->check(CLI::PositiveNumber);
+  CLI::Option* sim_only =
+      app.add_option("--sim-only", o.sim_only,
+                     "Run the simulation without a window for SECONDS (speed reference)")
+          ->check(CLI::PositiveNumber);
+  app.add_flag("--lockstep", o.lockstep,
+               "Deterministic: each frame advances the simulation by 1/60 s and waits for it; "
+               "script times are simulated seconds (tests, soak runs)")
+      ->excludes(sim_only);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

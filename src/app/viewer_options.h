@@ -27,7 +27,15 @@ struct ViewerOptions {
   // Run the simulation thread alone, without a window, for this many wall
   // seconds (for comparing its speed with and without the window).
   std::optional<double> sim_only;
+  // Deterministic: every frame advances the simulation by exactly
+  // kLockstepFrame simulated seconds and waits for it, and script times are
+  // simulated seconds, so a script does the same on any machine at any load
+  // (tests, soak runs). Off: the simulation follows the wall clock.
+  bool lockstep = false;
 };
+
+// Simulated seconds per frame under --lockstep: a 60 Hz display's frame.
+inline constexpr double kLockstepFrame = 1.0 / 60.0;
 
 // Parses argv; on --help or a usage error prints the message and returns the exit code.
 std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& options);

@@ -1,7 +1,8 @@
 #pragma once
 // A scripted session for tests and demos: timed input events read from JSON
 // and replayed through the same handlers as real input (docs/viewer.md has
-// the format). Times are wall seconds since the window's first frame.
+// the format). Times are seconds since the window's first frame: wall seconds,
+// or simulated seconds under --lockstep (the deterministic mode).
 #include <string>
 #include <vector>
 

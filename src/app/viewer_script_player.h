@@ -1,5 +1,6 @@
 #pragma once
-// Replays a Script in wall time: each frame, the earliest events that have come
+// Replays a Script on the clock it is given (wall time, or simulated time
+// under --lockstep): each frame, the earliest events that have come
 // due (all those sharing one time stamp) are carried out in order through a
 // Target (the window, which hands input events to the same InputHandler real
 // input goes to). A move with a duration is spread over the frames it spans,

@@ -116,6 +116,7 @@ void LiveScene::start(std::unique_ptr<Run> run) {
       break;
     }
   forces_.clear();
+  owed_ = 0;
   ++generation_;
 }
 
@@ -263,6 +264,7 @@ std::string LiveScene::on(const SetPinned& c) {
 
 std::string LiveScene::on(const SetPaused& c) {
   paused_ = c.paused;
+  owed_ = 0;
   return {};
 }
 
@@ -272,6 +274,36 @@ std::string LiveScene::on(const SingleStep&) {
   if (sim.status() != RunStatus::ok)
     return "SingleStep: the run diverged (" + sim.divergence_reason() + "); Reset first";
   sim.advance(sim.settings().dt);
+  // The full check after every stepping command, as after a published slice:
+  // where the checks fall (and so which state a divergence rolls back to) then
+  // depends on the commands alone, not on how the queue happened to be batched.
+  sim.check_now();
+  return {};
+}
+
+std::string LiveScene::on(const Advance& c) {
+  if (!(c.seconds >= 0 && std::isfinite(c.seconds)))
+    return "Advance: seconds must be finite and >= 0 (got " + number(c.seconds) + ")";
+  Simulation& sim = run_->sim;
+  // Paused or diverged, time stands still and nothing is owed (as a paused
+  // realtime run owes nothing for the pause).
+  if (paused_ || sim.status() != RunStatus::ok) {
+    owed_ = 0;
+    return {};
+  }
+  owed_ += c.seconds;
+  const double dt = sim.settings().dt;
+  // A step owed to within round-off is owed (1/60 s is no multiple of dt).
+  const double steps = std::floor(owed_ / dt + 1e-9);
+  if (steps < 1) return {};
+  const double start = sim.time();
+  sim.advance(steps * dt);
+  sim.check_now();
+  owed_ -= steps * dt;
+  // Behind (a step budget that ran out, a divergence rolled back): the debt is
+  // dropped, as a realtime run re-syncs, rather than chased frame after frame.
+  if (sim.status() != RunStatus::ok || sim.time() < start + steps * dt - 1e-9 * dt) owed_ = 0;
+  owed_ = std::max(owed_, 0.0);
   return {};
 }
 

@@ -68,6 +68,7 @@ class LiveScene {
   std::string on(const SetPinned& c);
   std::string on(const SetPaused& c);
   std::string on(const SingleStep& c);
+  std::string on(const Advance& c);
   std::string on(const Reset& c);
   std::string on(const LoadScene& c);
   std::string on(const LoadRules& c);
@@ -90,6 +91,9 @@ class LiveScene {
   std::vector<FrameSnapshot::AppliedForce> forces_;
   bool paused_;
   long generation_ = 0;
+  // Advance: simulated seconds asked for but not yet stepped (less than one dt
+  // after each Advance). Nothing is owed for a pause or across a restart.
+  double owed_ = 0;
 };
 
 }  // namespace neurocloth

@@ -50,7 +50,15 @@ struct SetPaused {
   bool paused;
 };
 struct SingleStep {};  // one refresh interval (dt) while paused
-struct Reset {};       // the scene's initial state and parameters
+// The lockstep clock (SimulationThread::Options::lockstep, the window's
+// --lockstep): simulated time moves on by `seconds` unless paused, in whole
+// steps of dt with the remainder carried to the next Advance, so a run depends
+// on the commands alone, never on how fast the machine is. Refused when the
+// thread paces itself.
+struct Advance {
+  double seconds;
+};
+struct Reset {};  // the scene's initial state and parameters
 struct LoadScene {
   std::string path;  // on failure the running scene keeps going; the error is reported
 };
@@ -60,6 +68,6 @@ struct LoadRules {
 
 using SimCommand =
     std::variant<SetParameter, SetIntegrator, SetAdaptive, SetSolver, ApplyForce, ReleaseForce,
-                 SetPinned, SetPaused, SingleStep, Reset, LoadScene, LoadRules>;
+                 SetPinned, SetPaused, SingleStep, Advance, Reset, LoadScene, LoadRules>;
 
 }  // namespace neurocloth

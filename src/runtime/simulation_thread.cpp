@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <variant>
 
 #include "command_queue.h"
 #include "live_scene.h"
@@ -86,7 +87,10 @@ struct SimulationThread::Impl {
     return o;
   }
 
-  double wall() const { return std::chrono::duration<double>(Clock::now() - origin).count(); }
+  double wall() const {
+    if (options.clock) return options.clock();
+    return std::chrono::duration<double>(Clock::now() - origin).count();
+  }
 
   void start() {
     generation = live.generation();
@@ -114,7 +118,9 @@ struct SimulationThread::Impl {
 
   void apply(const std::deque<SimCommand>& batch) {
     for (const SimCommand& c : batch) {
-      std::string why = live.apply(c);
+      std::string why = std::holds_alternative<Advance>(c) && !options.lockstep
+                            ? "Advance: only in lockstep mode (this thread paces itself)"
+                            : live.apply(c);
       ++applied;
       if (!why.empty()) {
         ++refused;
@@ -144,7 +150,8 @@ struct SimulationThread::Impl {
   void step_or_wait() {
     Simulation& sim = live.simulation();
     const double now = wall();
-    if (live.paused() || sim.status() != RunStatus::ok) {
+    // In lockstep only Advance commands move time (applied in order with the rest).
+    if (options.lockstep || live.paused() || sim.status() != RunStatus::ok) {
       stepping = false;
       queue.wait_for_work(std::chrono::duration<double>(kIdleWait));
       refresh_status(wall(), false);
@@ -214,7 +221,7 @@ struct SimulationThread::Impl {
   }
 
   bool keeping_up(double now) const {
-    if (!options.realtime || !stepping) return true;
+    if (options.lockstep || !options.realtime || !stepping) return true;
     if (now - pacer.last_resync() < kBehindMemory) return false;
     return !(rates.covered() >= 0.5 * kBehindMemory && rates.realtime_ratio() < kSlowRatio);
   }

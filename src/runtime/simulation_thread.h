@@ -4,7 +4,9 @@
 // FrameSnapshot (from a small pool of buffers, snapshot_exchange.h: the reader
 // takes the newest without ever blocking the simulation) and a SimulationStatus
 // copy. It runs in real time when it can keep up, and when it cannot it says so
-// (simulated seconds per wall second) instead of stalling anyone.
+// (simulated seconds per wall second) instead of stalling anyone; or, in
+// lockstep, only as far as Advance commands take it.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,6 +62,16 @@ class SimulationThread {
     bool realtime = true;             // pace to the wall clock (false: as fast as it can)
     double max_frame_seconds = 0.05;  // simulated time per slice at most, before publishing
     bool start_paused = false;
+    // Time moves only when told: the thread never steps on its own, each
+    // Advance command moves simulated time on (docs/threads.md, "Lockstep").
+    // For the window's --lockstep, tests and soak runs: a run is then the same
+    // on a fast machine and a loaded one. `realtime` is ignored.
+    bool lockstep = false;
+    // Wall seconds from any fixed origin, read by the simulation thread (it
+    // must be safe to call from there); empty: std::chrono::steady_clock. A
+    // test hands in a clock it moves itself, so the real-time pacing can be
+    // checked without depending on how fast the machine is.
+    std::function<double()> clock;
   };
   explicit SimulationThread(Scene scene, Options options);
   explicit SimulationThread(Scene scene) : SimulationThread(std::move(scene), Options{}) {}
