@@ -1,8 +1,8 @@
 #include "viewer_report.h"
 
-#include <fstream>
 #include <stdexcept>
 
+#include "json_writer.h"
 #include "ui_values.h"
 
 namespace neurocloth {
@@ -120,9 +120,7 @@ void ViewerReport::write(const std::string& path, const SimulationStatus& status
                         {{"median_steps_per_second", stats.median_steps_per_second()},
                          {"median_realtime_ratio", stats.median_realtime_ratio()}}},
                        {"status", status_json(status)}};
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << report.dump(2) << "\n";
-  if (!out) throw std::runtime_error(path + ": cannot write the report");
+  write_json_atomically(path, report);
 }
 
 }  // namespace neurocloth

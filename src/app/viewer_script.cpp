@@ -3,12 +3,11 @@
 #include <GLFW/glfw3.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <utility>
 
 #include "input_error.h"
 #include "json_fields.h"
+#include "text_file.h"
 
 namespace neurocloth {
 
@@ -159,11 +158,7 @@ const char* script_event_types() {
 }
 
 Script load_script(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "", "cannot open the script file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  const JsonFields in(text.str(), path);
+  const JsonFields in(read_text_file(path, "script file", kMaxSceneBytes), path);
   in.allow_only(in.root(), "", {"events", "description"});
   const nlohmann::json& events = in.member(in.root(), "", "events");
   if (!events.is_array()) in.fail("events", "expected an array of events");
