@@ -223,7 +223,7 @@ const ErrorCase kErrors[] = {
     {"NegatedTooDeep", {{"IF mass IS heavy", "IF NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT NOT mass IS heavy"}},
      "RULE 1", "NOT mass IS heavy", "the condition nests '(' and NOT more than 32 levels deep"},
     {"NumberBeyondTheEnginesRange", {{"TERM high := trian 100 500 1000", "TERM high := trian 100 500 1e16"}},
-     "DEFUZZIFY stiffness", "1e16", "number '1e16' is beyond +-1e15"},
+     "TERM high", "1e16", "number '1e16' is beyond +-1e15"},
 };
 // clang-format on
 
