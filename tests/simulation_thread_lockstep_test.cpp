@@ -120,7 +120,7 @@ TEST(SimulationThreadLockstep, TheResultDependsOnTheCommandsNotOnTheirBatching) 
   EXPECT_EQ(waited.status().commands_refused, 0);
 }
 
-TEST(SimulationThreadLockstep, AdvanceIsRefusedWhenTheThreadPacesItselfOrTimeIsNotATime) {
+TEST(SimulationThreadLockstep, AdvanceIsRefusedWhenTheThreadPacesItselfOrTheTimeIsNoFrame) {
   SimulationThread::Options flat_out;
   flat_out.realtime = false;
   flat_out.start_paused = true;
@@ -134,8 +134,11 @@ TEST(SimulationThreadLockstep, AdvanceIsRefusedWhenTheThreadPacesItselfOrTimeIsN
   SimulationThread sim(test::asset_scene("hanging"), lockstep());
   sim.post(Advance{-1});
   sim.post(Advance{std::numeric_limits<double>::infinity()});
+  sim.post(Advance{1e300});  // would hold the thread (and its stop) for ever
+  sim.post(Advance{std::numeric_limits<double>::quiet_NaN()});
   sim.wait_for_commands();
-  EXPECT_EQ(sim.status().commands_refused, 2);
+  EXPECT_EQ(sim.status().commands_refused, 4);
+  EXPECT_NE(sim.status().last_error.find("[0, 1]"), std::string::npos) << sim.status().last_error;
   EXPECT_EQ(sim.status().time, 0);
 }
 

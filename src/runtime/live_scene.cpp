@@ -282,8 +282,11 @@ std::string LiveScene::on(const SingleStep&) {
 }
 
 std::string LiveScene::on(const Advance& c) {
-  if (!(c.seconds >= 0 && std::isfinite(c.seconds)))
-    return "Advance: seconds must be finite and >= 0 (got " + number(c.seconds) + ")";
+  // One Advance holds every other command (and the thread's stop) until it is
+  // done: a frame asks for 1/60 s; more than a second is refused.
+  constexpr double kLongestAdvance = 1.0;  // s
+  if (!(c.seconds >= 0 && c.seconds <= kLongestAdvance))
+    return "Advance: seconds must lie in [0, 1] (got " + number(c.seconds) + ")";
   Simulation& sim = run_->sim;
   // Paused or diverged, time stands still and nothing is owed (as a paused
   // realtime run owes nothing for the pause).

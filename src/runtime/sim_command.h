@@ -54,7 +54,7 @@ struct SingleStep {};  // one refresh interval (dt) while paused
 // --lockstep): simulated time moves on by `seconds` unless paused, in whole
 // steps of dt with the remainder carried to the next Advance, so a run depends
 // on the commands alone, never on how fast the machine is. Refused when the
-// thread paces itself.
+// thread paces itself, and outside [0, 1] s (one Advance holds the queue).
 struct Advance {
   double seconds;
 };
