@@ -55,15 +55,17 @@ WindSpec wind_spec(const Vec3& velocity) {
 }
 
 // The module's force on every node of `topology` at rest positions with
-// velocity `cloth_velocity`, starting from zero.
+// velocity `cloth_velocity`, starting from zero, in a step that starts at `time`.
 NodeVectors module_forces(const ForceModule& m, const ClothTopology& topology,
-                          const Vec3& cloth_velocity = Vec3::Zero()) {
+                          const Vec3& cloth_velocity = Vec3::Zero(), double time = 0.0) {
   const ClothNetwork net = ClothNetwork::build(topology, Material{});
   ClothState s = net.rest_state(topology.rest_positions);
   for (std::size_t i = 0; i < s.size(); ++i)
     s.set_velocity(i, cloth_velocity);
   NodeVectors F(s.size());
-  m.add_forces(net, s, F);
+  ForceInputs inputs;
+  inputs.time = time;
+  m.add_forces(net, inputs, s, F);
   return F;
 }
 
@@ -197,9 +199,9 @@ TEST(Wind, StoresItsTriangles) {
 
 // The wind speed the module applies at `time`, as a multiple of the base speed:
 // read back from the force on a plate facing it (|F| grows with speed^2).
-double gust_factor(ForceModule& wind, const ClothTopology& t, const WindSpec& spec, double time) {
-  wind.begin_step(time);
-  const Vec3 F = sum(module_forces(wind, t));
+double gust_factor(const ForceModule& wind, const ClothTopology& t, const WindSpec& spec,
+                   double time) {
+  const Vec3 F = sum(module_forces(wind, t, Vec3::Zero(), time));
   const double base = spec.velocity.norm();
   const double q = pressure_force(spec, total_area(t), base) * (spec.drag + spec.skin);
   const double sign = F.dot(spec.velocity) < 0 ? -1.0 : 1.0;
@@ -242,11 +244,12 @@ TEST(WindGust, IsFrozenForTheStep) {
   WindSpec spec = wind_spec(Vec3(0, 4, 0));
   spec.gust.amplitude = 0.5;
   const auto wind = make_wind(spec, t);
-  wind->begin_step(0.3);
-  const Vec3 first = sum(module_forces(*wind, t));
-  EXPECT_EQ(sum(module_forces(*wind, t)), first);  // every evaluation of a step alike
-  wind->begin_step(0.8);
-  EXPECT_NE(sum(module_forces(*wind, t)), first);  // and the next step differs
+  const Vec3 first = sum(module_forces(*wind, t, Vec3::Zero(), 0.3));
+  // Every evaluation of a step alike (the gust is read at the step's start) ...
+  EXPECT_EQ(sum(module_forces(*wind, t, Vec3::Zero(), 0.3)), first);
+  EXPECT_TRUE(wind->time_dependent());
+  // ... and the next step differs.
+  EXPECT_NE(sum(module_forces(*wind, t, Vec3::Zero(), 0.8)), first);
 }
 
 TEST(WindGust, ZeroAmplitudeIsASteadyWind) {
@@ -276,7 +279,7 @@ TEST(AirDrag, ForceIsMinusRateTimesMassTimesVelocityOnEveryNode) {
   EXPECT_STREQ(drag->type(), "air_drag");
   NodeVectors F(3);
   F.x[1] = 10.0;  // adds to what is there
-  drag->add_forces(net, s, F);
+  drag->add_forces(net, ForceInputs{}, s, F);
   for (int i = 0; i < 3; ++i) {
     const Vec3 expected =
         -spec.rate * net.mass(i) * v[i] + (i == 1 ? Vec3(10, 0, 0) : Vec3::Zero());
@@ -305,7 +308,7 @@ TEST(AirDrag, FreeNodeDecaysExponentiallyAndPinnedNodeStays) {
   const int steps = 1000;
   for (int k = 0; k < steps; ++k) {
     net.net_forces(s, F);
-    rk4->step(net, s, F, h, next);
+    rk4->step(net, ForceInputs{}, s, F, h, next);
     s = next;
   }
   const double time = steps * h, decay = std::exp(-spec.rate * time);

@@ -93,12 +93,14 @@ TEST(ClothNetwork, StiffeningSpringForceIsMinusEnergyGradient) {
 TEST(ClothNetwork, ExternalForceAndGravityReachTheAcceleration) {
   ClothNetwork net = two_nodes(0.0, 0.0, 1.0);
   net.gravity = Vec3(0, -10, 0);
-  net.masses.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
+  ForceInputs inputs;
+  inputs.external_force.resize(2);
+  inputs.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
   net.set_pinned(0, true);
   ClothState s(2);
   s.set_position(1, Vec3(1, 0, 0));
   NodeVectors F(2), a(2);
-  net.net_forces(s, F);
+  net.net_forces(s, inputs, F);
   net.accelerations(F, a);
   EXPECT_EQ(a.at(0), Vec3::Zero());  // pinned
   EXPECT_NEAR(a.at(1).x(), 6.0, 1e-14);

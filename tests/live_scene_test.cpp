@@ -142,11 +142,11 @@ TEST(LiveScene, ForcesAreRememberedUntilReleased) {
   ASSERT_EQ(live.forces().size(), 1u);
   EXPECT_EQ(live.forces()[0].force, Vec3(0, 0, 0.7));
   EXPECT_EQ(live.forces()[0].anchor, Vec3(0, 0, 3));
-  EXPECT_EQ(live.simulation().network().masses.external_force.at(399), Vec3(0, 0, 0.7));
+  EXPECT_EQ(live.simulation().force_inputs().external_force.at(399), Vec3(0, 0, 0.7));
   EXPECT_EQ(live.apply(ReleaseForce{399}), "");
   EXPECT_EQ(live.apply(ReleaseForce{398}), "");  // not pulled: nothing to do, not an error
   EXPECT_TRUE(live.forces().empty());
-  EXPECT_EQ(live.simulation().network().masses.external_force.at(399), Vec3::Zero());
+  EXPECT_EQ(live.simulation().force_inputs().external_force.at(399), Vec3::Zero());
 }
 
 // A linguistic input ramps the weights to the rule base's material for the new

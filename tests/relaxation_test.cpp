@@ -56,13 +56,15 @@ TEST(Relaxation, ExternalForcesCount) {
   // A horizontal pull on the chain's end tilts it: the end moves the way it is pulled.
   const Scene scene = test::asset_scene("chain");
   ClothNetwork net = scene.build_network();
-  net.masses.external_force.x[9] = 0.5;
+  ForceInputs pull;
+  pull.external_force.resize(net.node_count());
+  pull.external_force.x[9] = 0.5;
   ClothState state = scene.initial_state();
-  ASSERT_TRUE(relax(net, state).converged);
+  ASSERT_TRUE(relax(net, state, RelaxSettings{}, pull).converged);
   EXPECT_GT(state.x[9], 0.05);
   // Equilibrium at the end node: spring force balances weight and pull.
   NodeVectors F(state.size());
-  net.net_forces(state, F);
+  net.net_forces(state, pull, F);
   EXPECT_NEAR(F.at(9).x(), 0.0, 1e-9);
   EXPECT_NEAR(F.at(9).y() - net.mass(9) * 9.81, 0.0, 1e-9);
 }

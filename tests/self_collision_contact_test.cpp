@@ -24,12 +24,14 @@ struct OneStep {
   ClothTopology topology;
   ClothNetwork net;
   std::unique_ptr<ConstraintModule> module;
+  std::unique_ptr<ModuleState> state;
   explicit OneStep(ClothTopology t)
       : topology(std::move(t)),
         net(ClothNetwork::build(topology, Material{})),
-        module(module_for(topology)) {}
+        module(module_for(topology)),
+        state(module->make_state()) {}
   void apply(const ClothState& before, ClothState& after) {
-    module->apply(net, StepSpan{0.0, 1e-3}, before, after);
+    module->apply(net, StepSpan{0.0, 1e-3}, before, after, state.get());
   }
 };
 

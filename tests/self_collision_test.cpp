@@ -31,7 +31,7 @@ SolverSettings fixed_steps(double dt = 1e-3) {
   return s;
 }
 
-using Constraints = std::vector<std::unique_ptr<ConstraintModule>>;
+using Constraints = std::vector<std::shared_ptr<const ConstraintModule>>;
 
 Constraints self_collision(const ClothTopology& topology, double thickness = kThickness) {
   Constraints modules;
@@ -260,6 +260,9 @@ TEST(SelfCollision, AllocatesOnceAndReportsItsState) {
   EXPECT_EQ(module->phase(), ConstraintModule::self_contact);
   const std::size_t bytes = module->state_bytes();
   EXPECT_GE(bytes, t.triangles.size() * 3 * sizeof(std::int32_t));
+  const auto state = module->make_state();
+  const std::size_t state_bytes = state->bytes();
+  EXPECT_GT(state_bytes, 0u);
   // Steps in contact and out of it: the buffers sized at build suffice.
   ClothNetwork net = ClothNetwork::build(t, Material{});
   const ClothState before = rest_of(t);
@@ -267,10 +270,11 @@ TEST(SelfCollision, AllocatesOnceAndReportsItsState) {
     // Corner node 0 thrown over a triangle far from its own, within thickness.
     ClothState after = before;
     after.set_position(0, Vec3(0.17, 0.003 * (k - 1), 0.16));
-    module->apply(net, StepSpan{0.0, 1e-3}, before, after);
+    module->apply(net, StepSpan{0.0, 1e-3}, before, after, state.get());
     EXPECT_NE(after.y[0], 0.003 * (k - 1)) << "no contact in round " << k;
   }
   EXPECT_EQ(module->state_bytes(), bytes);
+  EXPECT_EQ(state->bytes(), state_bytes);
 }
 
 const char* kScene = R"({

@@ -116,11 +116,11 @@ TEST(SimulationLiveControls, WindVelocityChangesLikeADeclaredOne) {
   for (std::size_t i = 0; i < s.size(); ++i)  // tilt the velocities so every term acts
     s.set_velocity(i, Vec3(0.1 * (i % 3), -0.2, 0.05 * (i % 5)));
   for (double time : {0.0, 0.7, 1.3}) {  // the gust scales the new mean like the declared one
-    live->begin_step(time);
-    built->begin_step(time);
+    ForceInputs inputs;
+    inputs.time = time;
     NodeVectors a(s.size()), b(s.size());
-    live->add_forces(net, s, a);
-    built->add_forces(net, s, b);
+    live->add_forces(net, inputs, s, a);
+    built->add_forces(net, inputs, s, b);
     for (std::size_t i = 0; i < s.size(); ++i)
       ASSERT_EQ(a.at(i), b.at(i)) << "node " << i << " at t = " << time;
   }

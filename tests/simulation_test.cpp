@@ -95,7 +95,7 @@ TEST(Simulation, RejectedTrialsLeaveNoTrace) {
     NodeVectors F(a.size());
     for (double h : steps) {
       net.net_forces(a, F);
-      integrator->step(net, a, F, h, b);
+      integrator->step(net, ForceInputs{}, a, F, h, b);
       std::swap(a, b);
     }
     EXPECT_EQ(test::state_hash(a), test::state_hash(sim.state())) << to_string(kind);
@@ -186,7 +186,7 @@ TEST(Simulation, ExternalForceCanBeSetOnAnyNodeAtAnyTime) {
   free.advance(0.2);
   EXPECT_GT(pushed.state().x[399] - free.state().x[399], 0.01);
   pushed.set_external_force(399, Vec3::Zero());
-  EXPECT_EQ(pushed.network().masses.external_force.at(399), Vec3::Zero());
+  EXPECT_EQ(pushed.force_inputs().external_force.at(399), Vec3::Zero());
 }
 
 // An interrupt asked between frames stops advance() there, and what was run

@@ -14,7 +14,6 @@ ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& 
   net.masses.inverse_mass.assign(n, 0.0);
   net.masses.friction.assign(n, 0.0);
   net.masses.free.assign(n, 1.0);
-  net.masses.external_force.resize(n);
   net.mass_share.assign(n, 1.0);
 
   SpringLayer& L = net.springs;
@@ -32,24 +31,39 @@ ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& 
   return net;
 }
 
-void ClothNetwork::apply_material(const Material& m) {
+MaterialWeights ClothNetwork::material_weights(const Material& m) const {
+  MaterialWeights w;
+  w.stiffness.resize(springs.size());
   for (std::size_t s = 0; s < springs.size(); ++s) {
     switch (springs.family[s]) {
       case SpringFamily::structural:
-        springs.stiffness[s] = m.spring_constant;
+        w.stiffness[s] = m.spring_constant;
         break;
       case SpringFamily::shear:
-        springs.stiffness[s] = m.shear();
+        w.stiffness[s] = m.shear();
         break;
       case SpringFamily::bend:
-        springs.stiffness[s] = m.bend();
+        w.stiffness[s] = m.bend();
         break;
     }
-    springs.damping[s] = m.viscosity;
   }
+  w.damping.assign(springs.size(), m.viscosity);
+  w.inverse_mass.resize(masses.size());
   for (std::size_t i = 0; i < masses.size(); ++i)
-    masses.inverse_mass[i] = 1.0 / (m.node_mass * mass_share[i]);
-  std::fill(masses.friction.begin(), masses.friction.end(), m.friction);
+    w.inverse_mass[i] = 1.0 / (m.node_mass * mass_share[i]);
+  w.friction.assign(masses.size(), m.friction);
+  return w;
+}
+
+void ClothNetwork::set_weights(const MaterialWeights& w) {
+  springs.stiffness = w.stiffness;
+  springs.damping = w.damping;
+  masses.inverse_mass = w.inverse_mass;
+  masses.friction = w.friction;
+}
+
+void ClothNetwork::apply_material(const Material& m) {
+  set_weights(material_weights(m));
 }
 
 namespace {
@@ -202,19 +216,42 @@ void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations
 
 }  // namespace
 
-void ClothNetwork::net_forces(const ClothState& s, NodeVectors& F) const {
+void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
   // External force is the acceleration neurons' bias input.
-  std::copy(masses.external_force.x.begin(), masses.external_force.x.end(), F.x.begin());
-  std::copy(masses.external_force.y.begin(), masses.external_force.y.end(), F.y.begin());
-  std::copy(masses.external_force.z.begin(), masses.external_force.z.end(), F.z.begin());
+  const NodeVectors& ext = in.external_force;
+  if (ext.size() == 0) {
+    std::fill(F.x.begin(), F.x.end(), 0.0);
+    std::fill(F.y.begin(), F.y.end(), 0.0);
+    std::fill(F.z.begin(), F.z.end(), 0.0);
+  } else {
+    std::copy(ext.x.begin(), ext.x.end(), F.x.begin());
+    std::copy(ext.y.begin(), ext.y.end(), F.y.begin());
+    std::copy(ext.z.begin(), ext.z.end(), F.z.begin());
+  }
   if (springs.function.kind == SpringFunctionKind::linear)
     propagate_all<SpringFunctionKind::linear>(*this, s, F);
   else
     propagate_all<SpringFunctionKind::stiffening>(*this, s, F);
-  for (const auto& m : force_modules) {
-    ScopedModuleTimer timer(m->clock);
-    m->add_forces(*this, s, F);
+  for (std::size_t k = 0; k < force_modules.size(); ++k) {
+    if (k < in.clocks.size()) {
+      ScopedModuleTimer timer(in.clocks[k]);
+      force_modules[k]->add_forces(*this, in, s, F);
+    } else {
+      force_modules[k]->add_forces(*this, in, s, F);
+    }
   }
+}
+
+void ClothNetwork::net_forces(const ClothState& s, NodeVectors& F) const {
+  net_forces(s, ForceInputs{}, F);
+}
+
+double ClothNetwork::external_potential(const ClothState& s, const ForceInputs& in) const {
+  double e = 0;
+  if (in.external_force.size() == 0) return e;
+  for (std::size_t i = 0; i < node_count(); ++i)
+    if (masses.free[i] != 0.0) e -= in.external_force.at(i).dot(s.position(i));
+  return e;
 }
 
 int ClothNetwork::degenerate_springs(const ClothState& s) const {

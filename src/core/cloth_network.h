@@ -1,14 +1,19 @@
 #pragma once
 // The cloth as the paper's recurrent network: a spring layer feeding a mass
 // layer, whose position and velocity neurons feed back into the spring layer.
-// The network is the model (parameters); the neuron outputs that change every
-// step live in ClothState, and scratch activations in SpringActivations, so a
-// const network can be evaluated on any state (RK4 stages, learning, rollback).
+// The network is the model: every parameter a user sets or learning adapts
+// (weights, rest lengths, masses, gravity, the force modules). What changes
+// from step to step is not in it: the neuron outputs live in ClothState, the
+// other inputs of the acceleration neurons (external forces, the clock) in
+// ForceInputs, scratch activations in SpringActivations. So a const network
+// can be evaluated on any state (RK4 stages, learning, rollback), and copies of
+// it are independent.
 #include <memory>
 #include <vector>
 
 #include "cloth_state.h"
 #include "cloth_topology.h"
+#include "force_inputs.h"
 #include "mass_layer.h"
 #include "material.h"
 #include "modules/scene_module.h"
@@ -25,6 +30,12 @@ struct SpringActivations {
     for (auto* a : {&fx, &fy, &fz})
       a->assign(springs, 0.0);
   }
+};
+
+// The weights a material sets: one per spring (stiffness, damping) and per node
+// (inverse mass, friction), in the network's order.
+struct MaterialWeights {
+  std::vector<double> stiffness, damping, inverse_mass, friction;
 };
 
 // Below this length a spring has no direction; its force is skipped, never divided by.
@@ -48,9 +59,10 @@ class ClothNetwork {
   // Cold data, read only when a material is applied.
   std::vector<double> mass_share;
   // The scene's force modules (air drag, wind): more inputs to the acceleration
-  // neurons, evaluated with the springs. Empty unless the scene declares them;
-  // shared, because a copy of the network (a ramp target) is the same scene.
-  std::vector<std::shared_ptr<ForceModule>> force_modules;
+  // neurons, evaluated with the springs. Empty unless the scene declares them.
+  // Immutable, so copies of the network share them safely; a live change
+  // replaces one (Simulation::set_module_parameter).
+  std::vector<std::shared_ptr<const ForceModule>> force_modules;
 
   // Builds the layers from a topology: one spring per SpringSpec (rest length from
   // the rest positions), the material's constants as initial weights.
@@ -61,13 +73,18 @@ class ClothNetwork {
   std::size_t spring_count() const { return springs.size(); }
   double mass(std::size_t node) const { return 1.0 / masses.inverse_mass[node]; }
   void set_pinned(std::size_t node, bool pinned) { masses.free[node] = pinned ? 0.0 : 1.0; }
+  // The weights `material` gives this network's springs and nodes.
+  MaterialWeights material_weights(const Material& material) const;
   // Re-applies a material's constants to every spring and node (all weights).
   void apply_material(const Material& material);
+  void set_weights(const MaterialWeights& weights);
 
   // Propagates the spring layer and sums its outputs into the acceleration
   // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1), plus whatever the
   // force modules add. Allocates nothing.
   // A spring shorter than kMinSpringLength contributes no force (no direction).
+  void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
+  // The same with no external force, at time 0.
   void net_forces(const ClothState& state, NodeVectors& force) const;
   // How many springs are that short at `state` (a diagnostic, off the hot path).
   int degenerate_springs(const ClothState& state) const;
@@ -79,6 +96,8 @@ class ClothNetwork {
   double max_net_force(const NodeVectors& force) const;
 
   Energy energy(const ClothState& state) const;
+  // The external forces' potential, -sum f_j . p_j over free nodes (J).
+  double external_potential(const ClothState& state, const ForceInputs& inputs) const;
   // The state at rest: nodes at `positions`, velocities zero.
   ClothState rest_state(const std::vector<Vec3>& positions) const;
 };

@@ -1,29 +1,32 @@
 #pragma once
 // What changes every step: the outputs of the position and velocity neurons.
 // Structure of arrays: the spring layer reads x[a+k], x[b+k] for consecutive k and
-// the mass layer walks every array front to back, so both vectorise. The arrays
-// share one staggered allocation (node_arrays.h).
+// the mass layer walks every array front to back, so both vectorise.
 #include <cstddef>
 #include <vector>
 
 #include "node_arrays.h"
-
 #include "vec3.h"
 
 namespace neurocloth {
 
-class ClothState : public NodeArrays<6> {
+class ClothState {
  public:
   NodeArray x, y, z;     // position neurons
   NodeArray vx, vy, vz;  // velocity neurons
 
-  explicit ClothState(std::size_t nodes = 0) : NodeArrays<6>(nodes) {
-    set_arrays({&x, &y, &z, &vx, &vy, &vz});
+  ClothState() = default;
+  explicit ClothState(std::size_t nodes) { resize(nodes); }
+  void resize(std::size_t nodes) {
+    for (NodeArray* a : {&x, &y, &z, &vx, &vy, &vz})
+      a->assign(nodes, 0.0);
   }
-  ClothState(const ClothState& o) : NodeArrays<6>(o) { set_arrays({&x, &y, &z, &vx, &vy, &vz}); }
-  ClothState& operator=(const ClothState& o) {
-    NodeArrays<6>::operator=(o);
-    return *this;
+  std::size_t size() const { return x.size(); }
+  std::size_t allocated_bytes() const {
+    std::size_t b = 0;
+    for (const NodeArray* a : {&x, &y, &z, &vx, &vy, &vz})
+      b += neurocloth::allocated_bytes(*a);
+    return b;
   }
   Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
@@ -42,14 +45,24 @@ class ClothState : public NodeArrays<6> {
 };
 
 // A force (or acceleration) per node, same layout as the state.
-class NodeVectors : public NodeArrays<3> {
+class NodeVectors {
  public:
   NodeArray x, y, z;
-  explicit NodeVectors(std::size_t nodes = 0) : NodeArrays<3>(nodes) { set_arrays({&x, &y, &z}); }
-  NodeVectors(const NodeVectors& o) : NodeArrays<3>(o) { set_arrays({&x, &y, &z}); }
-  NodeVectors& operator=(const NodeVectors& o) {
-    NodeArrays<3>::operator=(o);
-    return *this;
+  NodeVectors() = default;
+  explicit NodeVectors(std::size_t nodes) { resize(nodes); }
+  // 0 frees the arrays: a buffer a scene does not need costs nothing.
+  void resize(std::size_t nodes) {
+    for (NodeArray* a : {&x, &y, &z}) {
+      if (nodes == 0)
+        NodeArray().swap(*a);
+      else
+        a->assign(nodes, 0.0);
+    }
+  }
+  std::size_t size() const { return x.size(); }
+  std::size_t allocated_bytes() const {
+    return neurocloth::allocated_bytes(x) + neurocloth::allocated_bytes(y) +
+           neurocloth::allocated_bytes(z);
   }
   Vec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };

@@ -26,13 +26,14 @@ DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& 
   gravity_start_ = e.gravity;
 }
 
-std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& s) {
+std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& s,
+                                     const ForceInputs& inputs) {
   if (!s.all_finite()) return "non-finite position or velocity (NaN or Inf)";
   const Energy e = net.energy(s);
   if (!std::isfinite(e.total())) return "non-finite energy";
   double external = 0;
-  for (std::size_t i = 0; i < net.node_count(); ++i)
-    external += net.masses.external_force.at(i).norm();
+  for (std::size_t i = 0; i < inputs.external_force.size(); ++i)
+    external += inputs.external_force.at(i).norm();
   const double budget = base_budget_ + std::max(0.0, gravity_start_ - e.gravity) + external * size_;
   const double held = e.kinetic + e.spring;
   auto reason = [&](const char* what) {

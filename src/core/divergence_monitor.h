@@ -19,7 +19,7 @@ class DivergenceMonitor {
   DivergenceMonitor(const ClothNetwork& net, const ClothState& initial,
                     const DivergenceSettings& settings);
   // Empty when healthy; otherwise why the run diverged.
-  std::string check(const ClothNetwork& net, const ClothState& state);
+  std::string check(const ClothNetwork& net, const ClothState& state, const ForceInputs& inputs);
   bool striking() const { return strikes_ > 0; }
 
  private:

@@ -10,11 +10,12 @@ class ExplicitEuler final : public Integrator {
  public:
   explicit ExplicitEuler(const ClothNetwork& net) : acc_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::explicit_euler; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<ExplicitEuler>(*this); }
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
 
-  StepReport step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-                  ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs&, const ClothState& in,
+                  const NodeVectors& F, double h, ClothState& out) override {
     net.accelerations(F, acc_);
     const std::size_t n = net.node_count();
     for (std::size_t i = 0; i < n; ++i) {

@@ -10,8 +10,7 @@
 // beyond their rest force; the next step turns that into runaway energy. So
 // every step checks its linearisation against the forces where it landed and,
 // where it did not hold, walks the step in pieces small enough that it does
-// (halving on failure, doubling after success, like the paper's Table 1 rule
-// for t_c). Where it holds — every ordinary cloth and step — the result is the
+// (the step controller's Table 1 rule, with the step as its cap). Where it holds — every ordinary cloth and step — the result is the
 // single step, bit for bit, at the cost of one more force evaluation.
 #include <algorithm>
 #include <cmath>
@@ -25,8 +24,9 @@ namespace {
 
 class ImplicitEuler final : public Integrator {
  public:
-  explicit ImplicitEuler(const ClothNetwork& net)
-      : system_(net),
+  ImplicitEuler(const ClothNetwork& net, double min_step_fraction)
+      : min_step_fraction_(min_step_fraction),
+        system_(net),
         rhs_(3 * net.node_count()),
         dv_(3 * net.node_count()),
         v0_(3 * net.node_count()),
@@ -36,16 +36,18 @@ class ImplicitEuler final : public Integrator {
         force_a_(net.node_count()),
         force_b_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::implicit_euler; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<ImplicitEuler>(*this); }
   int order() const override { return 1; }
   double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
 
-  StepReport step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-                  ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                  const NodeVectors& F, double h, ClothState& out) override {
     StepReport report{0, 0, true};
     linear_step(net, in, F, h, out, report);
-    net.net_forces(out, force_a_);
+    net.net_forces(out, inputs, force_a_);
     ++report.force_evaluations;
-    if (!linearisation_holds(net, in, F, out, force_a_, h)) split(net, in, F, h, out, report);
+    if (!linearisation_holds(net, in, F, out, force_a_, h))
+      split(net, inputs, in, F, h, out, report);
     return report;
   }
 
@@ -56,8 +58,6 @@ class ImplicitEuler final : public Integrator {
   // light corner of the stability matrix starts at 5e9, and a threshold
   // anywhere from 10 to 1e7 keeps it stable (docs/stability.md).
   static constexpr double kLinearisationTolerance = 1000;
-  // A step is split into pieces no shorter than h / kMaxPieces (a floor on the work).
-  static constexpr double kMaxPieces = 1024;
 
   void linear_step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
                    ClothState& out, StepReport& report) {
@@ -113,29 +113,31 @@ class ImplicitEuler final : public Integrator {
   // From `in` to h in pieces over which the linearisation holds, each a
   // linearised step from where the last one landed; the end force of each
   // piece is the start force of the next.
-  void split(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-             ClothState& out, StepReport& report) {
+  void split(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+             const NodeVectors& F, double h, ClothState& out, StepReport& report) {
     ClothState* at = &piece_a_;
     ClothState* trial = &piece_b_;
     NodeVectors* at_force = &force_a_;
     NodeVectors* trial_force = &force_b_;
     *at = in;
     *at_force = F;
-    const double smallest = h / kMaxPieces;
-    double t = 0, piece = 0.5 * h;
+    StepController pieces(h, min_step_fraction_);
+    pieces.reject();  // the whole step did not hold
+    double t = 0;
     while (t < h) {
-      const double p = std::min(piece, h - t);
+      const double p = pieces.trial(h - t);
       linear_step(net, *at, *at_force, p, *trial, report);
-      net.net_forces(*trial, *trial_force);
+      net.net_forces(*trial, inputs, *trial_force);
       ++report.force_evaluations;
-      if (p > smallest && !linearisation_holds(net, *at, *at_force, *trial, *trial_force, p)) {
-        piece = std::max(0.5 * p, smallest);
+      if (!pieces.at_floor() &&
+          !linearisation_holds(net, *at, *at_force, *trial, *trial_force, p)) {
+        pieces.reject();
         continue;
       }
       std::swap(at, trial);
       std::swap(at_force, trial_force);
       t = h - t - p <= 1e-12 * h ? h : t + p;
-      piece = std::min(2.0 * p, h);
+      pieces.accept();
     }
     out = *at;
   }
@@ -144,6 +146,7 @@ class ImplicitEuler final : public Integrator {
     return static_cast<int>(std::max<std::size_t>(100, 3 * nodes));
   }
   static constexpr double cg_tolerance = 1e-10;
+  double min_step_fraction_;
   ImplicitSystem system_;
   std::vector<double> rhs_, dv_, v0_, kv_;
   // Scratch of a split step: where the pieces start and land, with their forces.
@@ -153,8 +156,8 @@ class ImplicitEuler final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net) {
-  return std::make_unique<ImplicitEuler>(net);
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction) {
+  return std::make_unique<ImplicitEuler>(net, min_step_fraction);
 }
 
 }  // namespace neurocloth

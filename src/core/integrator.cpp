@@ -33,7 +33,8 @@ std::string integrator_names() {
   return s;
 }
 
-std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net) {
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
+                                            double min_step_fraction) {
   switch (kind) {
     case IntegratorKind::network:
       return make_network_propagation(net);
@@ -44,7 +45,7 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
     case IntegratorKind::rk4:
       return make_runge_kutta4(net);
     case IntegratorKind::implicit_euler:
-      return make_implicit_euler(net);
+      return make_implicit_euler(net, min_step_fraction);
   }
   return nullptr;
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cloth_network.h"
+#include "step_controller.h"
 
 namespace neurocloth {
 
@@ -30,15 +31,18 @@ class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual IntegratorKind kind() const = 0;
+  // An independent copy (scratch included), for copying a simulation.
+  virtual std::unique_ptr<Integrator> clone() const = 0;
   // Global order of accuracy.
   virtual int order() const = 0;
   // Largest h * omega for which an undamped linear oscillator stays bounded
   // (infinity when unconditionally stable). The adaptive step scales its bound by it.
   virtual double stability_limit() const = 0;
   // Advances `in` by h into `out` (which must not alias `in` unless steps_in_place()).
-  // `start_force` is net_forces(in): the caller always has it, for the adaptive rule or its FSAL
-  // cache.
-  virtual StepReport step(const ClothNetwork& net, const ClothState& in,
+  // `start_force` is net_forces(in, inputs): the caller always has it, for the
+  // adaptive rule or its FSAL cache. Every force evaluation of the step reads
+  // the same `inputs`.
+  virtual StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                           const NodeVectors& start_force, double h, ClothState& out) = 0;
   // True when `out` may be the same object as `in`: a fixed step then touches
   // one state buffer instead of two (half the memory traffic on large cloths).
@@ -46,6 +50,8 @@ class Integrator {
 };
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.
-std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net);
+// `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h).
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
+                                            double min_step_fraction = kDefaultMinStepFraction);
 
 }  // namespace neurocloth

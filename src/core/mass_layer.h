@@ -19,7 +19,6 @@ struct MassLayer {
   // 1 for a free node, 0 for a pinned one. A multiplier rather than a branch so
   // the node update stays one vectorised loop.
   std::vector<double> free;
-  NodeVectors external_force;  // N, settable on any node at any time
 
   std::size_t size() const { return inverse_mass.size(); }
   bool pinned(std::size_t i) const { return free[i] == 0.0; }

@@ -11,12 +11,13 @@ namespace {
 class NetworkPropagation final : public Integrator {
  public:
   IntegratorKind kind() const override { return IntegratorKind::network; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<NetworkPropagation>(*this); }
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
   bool steps_in_place() const override { return true; }
 
-  StepReport step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double tc,
-                  ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs&, const ClothState& in,
+                  const NodeVectors& F, double tc, ClothState& out) override {
     const std::size_t n = net.node_count();
     const double* __restrict w = net.masses.inverse_mass.data();
     const double* __restrict free = net.masses.free.data();

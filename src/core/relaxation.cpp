@@ -11,17 +11,14 @@ namespace neurocloth {
 namespace {
 
 // Potential energy, including the external forces' potential -f.p.
-double potential(const ClothNetwork& net, const ClothState& s) {
-  double e = net.energy(s).potential();
-  for (std::size_t i = 0; i < net.node_count(); ++i)
-    if (net.masses.free[i] != 0.0) e -= net.masses.external_force.at(i).dot(s.position(i));
-  return e;
+double potential(const ClothNetwork& net, const ClothState& s, const ForceInputs& in) {
+  return net.energy(s).potential() + net.external_potential(s, in);
 }
 
 // Total force on every free node (springs, external, weight), interleaved; 0 on pins.
-double total_force(const ClothNetwork& net, const ClothState& s, NodeVectors& F,
-                   std::vector<double>& out) {
-  net.net_forces(s, F);
+double total_force(const ClothNetwork& net, const ClothState& s, const ForceInputs& in,
+                   NodeVectors& F, std::vector<double>& out) {
+  net.net_forces(s, in, F);
   double worst = 0;
   for (std::size_t i = 0; i < net.node_count(); ++i) {
     const double free = net.masses.free[i];
@@ -35,7 +32,8 @@ double total_force(const ClothNetwork& net, const ClothState& s, NodeVectors& F,
 
 }  // namespace
 
-RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings) {
+RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings,
+                  const ForceInputs& inputs) {
   const std::size_t n = net.node_count();
   std::fill(state.vx.begin(), state.vx.end(), 0.0);
   std::fill(state.vy.begin(), state.vy.end(), 0.0);
@@ -65,8 +63,8 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
   // No step taken yet counts as an unbounded one: convergence needs a step.
   double last_step = std::numeric_limits<double>::infinity();
   double mu = 100.0;  // 1/h^2 for h = 0.1 s: a cautious first step
-  double energy = potential(net, state);
-  report.residual_force = total_force(net, state, F, f);
+  double energy = potential(net, state, inputs);
+  report.residual_force = total_force(net, state, inputs, F, f);
   for (int it = 0; it < settings.max_iterations; ++it) {
     if (report.residual_force <= force_tol && last_step <= settings.position_tolerance) {
       report.converged = true;
@@ -85,7 +83,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
       trial.z[i] = state.z[i] + dx[3 * i + 2];
       step = std::max(step, Vec3(dx[3 * i], dx[3 * i + 1], dx[3 * i + 2]).norm());
     }
-    const double trial_energy = potential(net, trial);
+    const double trial_energy = potential(net, trial, inputs);
     // Accept when the energy does not rise beyond round-off.
     // (A zero step — CG met negative curvature at once — is no progress: more
     // regularisation, like a rise.)
@@ -95,7 +93,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
       energy = trial_energy;
       last_step = report.last_step = step;
       ++report.accepted_steps;
-      report.residual_force = total_force(net, state, F, f);
+      report.residual_force = total_force(net, state, inputs, F, f);
       mu = std::max(mu * 0.25, 1e-9);
     } else {
       mu = mu * 8.0;

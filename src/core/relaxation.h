@@ -33,8 +33,10 @@ struct RelaxReport {
   std::size_t free_nodes = 0;  // none: nothing can move, so the state is converged as it is
 };
 
-// Relaxes `state` in place (velocities set to zero). External forces count, as a
-// potential -f.p. Never leaves NaN in `state`: a failed trial is not accepted.
-RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings = {});
+// Relaxes `state` in place (velocities set to zero). External forces in `inputs`
+// count, as a potential -f.p. Never leaves NaN in `state`: a failed trial is
+// not accepted.
+RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings = {},
+                  const ForceInputs& inputs = {});
 
 }  // namespace neurocloth

@@ -10,11 +10,12 @@ class RungeKutta4 final : public Integrator {
   explicit RungeKutta4(const ClothNetwork& net)
       : stage_(net.node_count()), acc_(net.node_count()), force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::rk4; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<RungeKutta4>(*this); }
   int order() const override { return 4; }
   double stability_limit() const override { return 2.78; }  // imaginary-axis limit 2*sqrt(2)
 
-  StepReport step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-                  ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                  const NodeVectors& F, double h, ClothState& out) override {
     const std::size_t n = net.node_count();
     out = in;
     // k1 at the start; each later stage is evaluated at in + c * h * k_previous.
@@ -45,7 +46,7 @@ class RungeKutta4 final : public Integrator {
         stage_.vy[i] = in.vy[i] + ch * acc_.y[i];
         stage_.vz[i] = in.vz[i] + ch * acc_.z[i];
       }
-      net.net_forces(stage_, force_);
+      net.net_forces(stage_, inputs, force_);
       net.accelerations(force_, acc_);
       k_state = &stage_;
     }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "stability.h"
+#include "step_controller.h"
 
 namespace neurocloth {
 
@@ -30,18 +31,21 @@ void check_state(const ClothState& s, const char* what) {
 
 // The weights a step divides by or multiplies with: finite, a positive inverse
 // mass, no negative stiffness or damping (either would pump energy in).
+void check_weights(const std::vector<double>& stiffness, const std::vector<double>& damping,
+                   const std::vector<double>& inverse_mass) {
+  for (std::size_t i = 0; i < stiffness.size(); ++i)
+    if (!(stiffness[i] >= 0 && std::isfinite(stiffness[i])))
+      refuse("springs.stiffness", i, "finite and >= 0", stiffness[i]);
+  for (std::size_t i = 0; i < damping.size(); ++i)
+    if (!(damping[i] >= 0 && std::isfinite(damping[i])))
+      refuse("springs.damping", i, "finite and >= 0", damping[i]);
+  for (std::size_t i = 0; i < inverse_mass.size(); ++i)
+    if (!(inverse_mass[i] > 0 && std::isfinite(inverse_mass[i])))
+      refuse("masses.inverse_mass", i, "finite and > 0 (a node needs a mass)", inverse_mass[i]);
+}
+
 void check_weights(const ClothNetwork& net) {
-  const SpringLayer& sp = net.springs;
-  for (std::size_t i = 0; i < sp.size(); ++i) {
-    if (!(sp.stiffness[i] >= 0 && std::isfinite(sp.stiffness[i])))
-      refuse("springs.stiffness", i, "finite and >= 0", sp.stiffness[i]);
-    if (!(sp.damping[i] >= 0 && std::isfinite(sp.damping[i])))
-      refuse("springs.damping", i, "finite and >= 0", sp.damping[i]);
-  }
-  const MassLayer& m = net.masses;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    if (!(m.inverse_mass[i] > 0 && std::isfinite(m.inverse_mass[i])))
-      refuse("masses.inverse_mass", i, "finite and > 0 (a node needs a mass)", m.inverse_mass[i]);
+  check_weights(net.springs.stiffness, net.springs.damping, net.masses.inverse_mass);
   if (!net.gravity.allFinite()) refuse("gravity", 0, "finite", net.gravity.norm());
 }
 
@@ -57,18 +61,17 @@ const char* to_string(RunStatus s) {
 }
 
 Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
-                       std::vector<std::unique_ptr<ConstraintModule>> constraints)
+                       std::vector<std::shared_ptr<const ConstraintModule>> constraints)
     : net_(std::move(network)),
-      settings_(validated(settings)),  // before the integrator is made from them
-      integrator_(make_integrator(settings.integrator, net_)),
       constraints_(std::move(constraints)),
-      start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
-      a_(initial),
-      b_(initial),
+      settings_(validated(settings)),  // before the integrator is made from them
+      states_{initial, initial},
       checkpoint_(initial),
-      force_a_(net_.node_count()),
-      force_b_(net_.node_count()),
-      monitor_(net_, initial, settings.divergence) {
+      monitor_(net_, initial, settings.divergence),
+      integrator_(make_integrator(settings.integrator, net_,
+                                  settings.adaptive_settings.min_step_fraction)),
+      start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
+      forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
   if (initial.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
   check_state(initial, "initial state");
@@ -77,53 +80,30 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
     if (net_.masses.free[i] != 0.0)
       force_scale_ = std::max(force_scale_, std::abs(net_.mass(i)) * net_.gravity.norm());
   if (force_scale_ == 0.0) force_scale_ = 1e-9;
+  inputs_.clocks.resize(net_.force_modules.size());
+  constraint_clocks_.resize(constraints_.size());
+  for (const auto& c : constraints_)
+    module_states_.push_back(c->make_state());
 }
 
-Simulation::Simulation(Simulation&& o) noexcept
-    : net_(std::move(o.net_)),
-      settings_(o.settings_),
-      integrator_(std::move(o.integrator_)),
-      constraints_(std::move(o.constraints_)),
-      start_(std::move(o.start_)),
-      a_(std::move(o.a_)),
-      b_(std::move(o.b_)),
-      checkpoint_(std::move(o.checkpoint_)),
-      front_(o.front_ == &o.a_ ? &a_ : &b_),
-      back_(o.back_ == &o.a_ ? &a_ : &b_),
-      force_a_(std::move(o.force_a_)),
-      force_b_(std::move(o.force_b_)),
-      force_front_(o.force_front_ == &o.force_a_ ? &force_a_ : &force_b_),
-      force_back_(o.force_back_ == &o.force_a_ ? &force_a_ : &force_b_),
-      front_forces_valid_(o.front_forces_valid_),
-      degenerate_(o.degenerate_),
-      monitor_(std::move(o.monitor_)),
-      ramp_(std::move(o.ramp_)),
-      status_(o.status_),
-      reason_(std::move(o.reason_)),
-      time_(o.time_),
-      checkpoint_time_(o.checkpoint_time_),
-      steps_(o.steps_),
-      checkpoint_steps_(o.checkpoint_steps_),
-      rejected_(o.rejected_),
-      force_evaluations_(o.force_evaluations_),
-      cg_iterations_(o.cg_iterations_),
-      steps_since_check_(o.steps_since_check_),
-      cap_(o.cap_),
-      former_force_(o.former_force_),
-      force_scale_(o.force_scale_),
-      bound_k_(std::move(o.bound_k_)),
-      bound_d_(std::move(o.bound_d_)),
-      budget_left_(o.budget_left_),
-      budget_exhausted_(o.budget_exhausted_),
-      observer_(std::move(o.observer_)),
-      interrupt_(std::move(o.interrupt_)),
-      interrupted_(o.interrupted_) {}
+void Simulation::invalidate(Stale what) {
+  front_forces_valid_ = false;
+  former_force_ = -1;
+  if (what == Stale::weights) cap_ = -1;
+}
 
 ClothNetwork& Simulation::mutable_network() {
-  front_forces_valid_ = false;
-  cap_ = -1;
-  former_force_ = -1;
+  invalidate(Stale::weights);
   return net_;
+}
+
+bool Simulation::set_module_parameter(std::size_t index, const std::string& name, double value) {
+  if (index >= net_.force_modules.size()) throw std::out_of_range("no such force module");
+  std::shared_ptr<ForceModule> changed = net_.force_modules[index]->clone();
+  if (!changed->set_parameter(name, value)) return false;
+  net_.force_modules[index] = std::move(changed);
+  invalidate(Stale::forces);
+  return true;
 }
 
 // The stability bound does not depend on external forces: only the cached
@@ -131,63 +111,67 @@ ClothNetwork& Simulation::mutable_network() {
 void Simulation::set_external_force(std::size_t node, const Vec3& f) {
   if (node >= net_.node_count()) throw std::out_of_range("set_external_force: no such node");
   if (!f.allFinite()) throw std::invalid_argument("set_external_force: force must be finite");
-  front_forces_valid_ = false;
-  former_force_ = -1;
-  net_.masses.external_force.x[node] = f.x();
-  net_.masses.external_force.y[node] = f.y();
-  net_.masses.external_force.z[node] = f.z();
+  NodeVectors& ext = inputs_.external_force;
+  if (ext.size() == 0) {
+    if (f == Vec3::Zero()) return;  // nothing to add: no memory, no work
+    ext.resize(net_.node_count());
+  }
+  ext.x[node] = f.x();
+  ext.y[node] = f.y();
+  ext.z[node] = f.z();
+  invalidate(Stale::forces);
 }
 
 void Simulation::set_state(const ClothState& s) {
   if (s.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
   check_state(s, "set_state");
-  *front_ = s;
+  front() = s;
   checkpoint_ = s;
   checkpoint_time_ = time_;
   checkpoint_steps_ = steps_;
-  front_forces_valid_ = false;
-  former_force_ = -1;
+  invalidate(Stale::forces);
 }
 
 void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
   settings_ = settings;
-  integrator_ = make_integrator(settings_.integrator, net_);
+  integrator_ =
+      make_integrator(settings_.integrator, net_, settings_.adaptive_settings.min_step_fraction);
   start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());
-  mutable_network();  // drops cached forces and the step cap
+  invalidate(Stale::weights);
 }
 
 void Simulation::set_pinned(std::size_t node, bool pinned) {
   if (node >= net_.node_count()) throw std::out_of_range("no such node");
   mutable_network().set_pinned(node, pinned);
   if (!pinned) return;
-  front_->set_velocity(node, Vec3::Zero());
+  front().set_velocity(node, Vec3::Zero());
   checkpoint_.set_velocity(node, Vec3::Zero());
 }
 
 void Simulation::rebase_divergence_check() {
-  monitor_ = DivergenceMonitor(net_, *front_, settings_.divergence);
+  monitor_ = DivergenceMonitor(net_, state(), settings_.divergence);
 }
 
 void Simulation::ramp_to_material(const Material& material, int steps) {
-  ClothNetwork target = net_;
-  target.apply_material(material);
-  check_weights(target);  // a bad material is refused; the ramp in progress goes on
+  const MaterialWeights target = net_.material_weights(material);
+  // A bad material is refused; the ramp in progress goes on.
+  check_weights(target.stiffness, target.damping, target.inverse_mass);
   ramp_.start(net_, target, steps);
 }
 
 // Applies the ramp's next weights (between two steps); drops what they invalidate.
 bool Simulation::advance_ramp() {
   if (!ramp_.advance(net_)) return false;
-  front_forces_valid_ = false;
-  cap_ = -1;
-  former_force_ = -1;
+  invalidate(Stale::weights);
   return true;
 }
 
 double Simulation::step_cap() {
   if (cap_ < 0) {
+    // Recomputed after every weight change, a ramp's steps too: the bound is
+    // not monotone along a ramp (damping moves linearly, mass geometrically).
     const double bound = integrator_step_bound(net_, *integrator_, bound_k_, bound_d_);
     cap_ = std::min(settings_.dt, settings_.adaptive_settings.safety * bound);
   }
@@ -232,53 +216,62 @@ RunStatus Simulation::advance(double seconds) {
     }
   }
   // Between energy checks, at least never hand out a NaN: a cheap test every call.
-  if (status_ == RunStatus::ok && steps_since_check_ > 0 && !front_->all_finite()) run_check();
+  if (status_ == RunStatus::ok && steps_since_check_ > 0 && !state().all_finite()) run_check();
   return status_;
 }
 
+// The step's inputs are frozen at its start; forces cached at the current state
+// for an earlier time are stale when a module reads the time (a gust).
 void Simulation::begin_step() {
-  bool changed = false;
+  if (inputs_.time == time_) return;
+  inputs_.time = time_;
   for (const auto& m : net_.force_modules)
-    changed |= m->begin_step(time_);
-  if (changed) {  // a gust moved: the forces cached at the current state are stale
-    front_forces_valid_ = false;
-    former_force_ = -1;
-  }
+    if (m->time_dependent()) {
+      invalidate(Stale::forces);
+      return;
+    }
 }
 
 void Simulation::constrain(const StepStart& before, ClothState& after, double h) {
   const StepSpan span{time_, h};
-  for (const auto& c : constraints_) {
-    ScopedModuleTimer timer(c->clock);
-    c->apply(net_, span, before, after);
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    ScopedModuleTimer timer(constraint_clocks_[k]);
+    constraints_[k]->apply(net_, span, before, after, module_states_[k].get());
   }
 }
 
 std::size_t Simulation::module_overhead_bytes() const {
   return net_.force_modules.capacity() * sizeof(net_.force_modules[0]) +
-         constraints_.capacity() * sizeof(constraints_[0]) + start_.allocated_bytes();
+         constraints_.capacity() * sizeof(constraints_[0]) +
+         module_states_.capacity() * sizeof(module_states_[0]) +
+         inputs_.clocks.capacity() * sizeof(ModuleClock) +
+         constraint_clocks_.capacity() * sizeof(ModuleClock) + start_.allocated_bytes();
 }
 
 std::vector<ModuleReport> Simulation::module_reports() const {
   std::vector<ModuleReport> out;
-  auto add = [&](const SceneModule& m) {
-    out.push_back({m.type(), m.declaration, m.clock.seconds, m.clock.calls, m.state_bytes()});
-  };
-  for (const auto& m : net_.force_modules)
-    add(*m);
-  for (const auto& c : constraints_)
-    add(*c);
+  for (std::size_t k = 0; k < net_.force_modules.size(); ++k) {
+    const ForceModule& m = *net_.force_modules[k];
+    const ModuleClock& c = inputs_.clocks[k];
+    out.push_back({m.type(), m.declaration, c.seconds, c.calls, m.state_bytes()});
+  }
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    const ConstraintModule& m = *constraints_[k];
+    const ModuleClock& c = constraint_clocks_[k];
+    const std::size_t state = module_states_[k] ? module_states_[k]->bytes() : 0;
+    out.push_back({m.type(), m.declaration, c.seconds, c.calls, m.state_bytes() + state});
+  }
   return out;
 }
 
 void Simulation::ensure_front_forces() {
   if (front_forces_valid_) return;
-  net_.net_forces(*front_, *force_front_);
+  net_.net_forces(state(), inputs_, forces_[force_front_]);
   front_forces_valid_ = true;
 }
 
 void Simulation::accept(double h, bool result_in_back) {
-  if (result_in_back) std::swap(front_, back_);
+  if (result_in_back) front_ = 1 - front_;
   time_ += h;
   ++steps_;
   ++steps_since_check_;
@@ -303,10 +296,10 @@ bool Simulation::fixed_frame(double frame) {
     if (budget_left_ <= 0) return false;
     --budget_left_;
     advance_ramp();
-    const double n = std::ceil(left / step_cap() * (1.0 - 1e-12));
-    const double h = n > 1 ? left / n : left;
+    const double h =
+        StepController(step_cap(), settings_.adaptive_settings.min_step_fraction).equal_piece(left);
     fixed_step_now(h);
-    if (n <= 1) break;
+    if (h == left) break;
     left -= h;
   }
   if (status_ == RunStatus::ok) time_ = end;
@@ -326,19 +319,20 @@ void Simulation::fixed_step_now(double h) {
   // constraints, the start positions are kept aside first: copying three arrays
   // costs less than writing the whole step to the other buffer.
   const bool in_place = integrator_->steps_in_place();
-  ClothState* out = in_place ? front_ : back_;
+  ClothState& in = front();
+  ClothState& out = in_place ? in : back();
   if (in_place && !constraints_.empty()) {
-    std::copy(front_->x.begin(), front_->x.end(), start_.x.begin());
-    std::copy(front_->y.begin(), front_->y.end(), start_.y.begin());
-    std::copy(front_->z.begin(), front_->z.end(), start_.z.begin());
+    std::copy(in.x.begin(), in.x.end(), start_.x.begin());
+    std::copy(in.y.begin(), in.y.end(), start_.y.begin());
+    std::copy(in.z.begin(), in.z.end(), start_.z.begin());
   }
-  const StepStart before = in_place ? StepStart(start_) : StepStart(*front_);
-  const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *out);
-  constrain(before, *out, h);
+  const StepStart before = in_place ? StepStart(start_) : StepStart(in);
+  const StepReport r = integrator_->step(net_, inputs_, in, forces_[force_front_], h, out);
+  constrain(before, out, h);
   force_evaluations_ += r.force_evaluations;
   cg_iterations_ += r.cg_iterations;
-  front_forces_valid_ = false;
-  accept(h, out == back_);
+  invalidate(Stale::forces);
+  accept(h, !in_place);
   after_accept(false);
 }
 
@@ -347,44 +341,40 @@ void Simulation::fixed_step_now(double h) {
 // and a tolerance on "the force grows".
 bool Simulation::adaptive_frame(double frame_end) {
   const AdaptiveSettings& A = settings_.adaptive_settings;
-  double cap = step_cap();
-  double floor = cap * A.min_step_fraction;
-  double tc = cap;  // Table 1: t_c := t_delta, never above the cap
+  StepController tc(step_cap(), A.min_step_fraction);  // Table 1: t_c := t_delta, under the cap
   bool accepted = true;
   while (status_ == RunStatus::ok && time_ < frame_end) {
     if (budget_left_ <= 0) return false;
     --budget_left_;
-    if (accepted && advance_ramp()) {  // weights moved: a new cap, new forces
-      cap = step_cap();
-      floor = cap * A.min_step_fraction;
-      tc = std::min(tc, cap);
-    }
+    if (accepted && advance_ramp()) tc.set_cap(step_cap());  // weights moved: a new cap
     begin_step();
     ensure_front_forces();
-    if (former_force_ < 0) former_force_ = net_.max_net_force(*force_front_);
-    const double h = std::min(tc, frame_end - time_);
-    const StepReport r = integrator_->step(net_, *front_, *force_front_, h, *back_);
-    constrain(*front_, *back_, h);
-    net_.net_forces(*back_, *force_back_);
+    if (former_force_ < 0) former_force_ = net_.max_net_force(forces_[force_front_]);
+    const double tried = tc.trial(std::numeric_limits<double>::infinity());
+    const double h = tc.trial(frame_end - time_);
+    const StepReport r = integrator_->step(net_, inputs_, front(), forces_[force_front_], h, back());
+    constrain(front(), back(), h);
+    NodeVectors& landed = forces_[1 - force_front_];
+    net_.net_forces(back(), inputs_, landed);
     force_evaluations_ += r.force_evaluations + 1;
     cg_iterations_ += r.cg_iterations;
-    const double m = net_.max_net_force(*force_back_);
+    const double m = net_.max_net_force(landed);
     const double allowed =
         former_force_ + A.growth_tolerance * std::max(former_force_, force_scale_);
     const bool grows = !(m <= allowed);  // NaN grows
-    const bool forced = grows && tc <= floor;
-    StepEvent ev{time_, tc, h, !grows || forced, forced, m, former_force_};
+    const bool forced = grows && tc.at_floor();
+    StepEvent ev{time_, tried, h, !grows || forced, forced, m, former_force_};
     accepted = !grows || forced;
-    if (grows && !forced) {
+    if (!accepted) {
       ++rejected_;
-      tc = std::max(0.5 * tc, floor);  // Table 1: t_c := t_c * 0.5 (rollback: no swap)
+      tc.reject();  // rollback: the back buffer is not swapped in
       if (observer_) observer_(ev);
       continue;
     }
     accept(h);
-    std::swap(force_front_, force_back_);
+    force_front_ = 1 - force_front_;
     former_force_ = m;
-    tc = std::min(2.0 * tc, cap);  // Table 1: t := t + t_c; t_c := t_c * 2
+    tc.accept();
     if (frame_end - time_ <= 1e-12 * settings_.dt) time_ = frame_end;
     if (observer_) observer_(ev);
     after_accept(!std::isfinite(m));
@@ -399,22 +389,21 @@ RunStatus Simulation::check_now() {
 
 void Simulation::run_check() {
   steps_since_check_ = 0;
-  degenerate_ = net_.degenerate_springs(*front_);
-  std::string why = monitor_.check(net_, *front_);
+  degenerate_ = net_.degenerate_springs(state());
+  std::string why = monitor_.check(net_, state(), inputs_);
   if (why.empty()) {
     if (!monitor_.striking()) {
-      checkpoint_ = *front_;
+      checkpoint_ = state();
       checkpoint_time_ = time_;
       checkpoint_steps_ = steps_;
     }
     return;
   }
   // Diverged: go back to the last state that passed a check.
-  *front_ = checkpoint_;
+  front() = checkpoint_;
   time_ = checkpoint_time_;
   steps_ = checkpoint_steps_;
-  front_forces_valid_ = false;
-  former_force_ = -1;
+  invalidate(Stale::forces);
   status_ = RunStatus::diverged;
   reason_ = std::move(why);
 }

@@ -1,14 +1,26 @@
 #pragma once
 // Runs a network forward in time: fixed steps or the paper's adaptive
 // propagation (Table 1), with rollback of rejected steps and divergence
-// detection that keeps the last good state. The simulation owns its state; the
-// integrator writes into a back buffer which becomes current only when the step
-// is accepted, so a rejection costs nothing to undo.
+// detection that keeps the last good state. The integrator writes into a back
+// buffer which becomes current only when the step is accepted, so a rejection
+// costs nothing to undo.
+//
+// A simulation is a model and a state (MuJoCo's mjModel / mjData). The model —
+// the network, the constraint modules, the solver settings — is read by a step
+// and never written by it; it changes only between steps, through the calls
+// below. The state — the neurons' outputs, the external forces and the clock
+// (ForceInputs), what each constraint keeps between steps, the checkpoint, the
+// ramp in progress — is everything a step writes. The rest is cache (forces at
+// the current state, the step cap), dropped by one function, invalidate().
+// Every member is a value: a copy of a running simulation continues exactly as
+// the original would, bit for bit, and stepping one leaves the other alone.
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cloned.h"
 #include "cloth_network.h"
 #include "divergence_monitor.h"
 #include "integrator.h"
@@ -21,7 +33,6 @@ namespace neurocloth {
 enum class RunStatus { ok, diverged };
 const char* to_string(RunStatus s);
 
-// One trial step of the adaptive propagation, for tests and diagnostics.
 // What one active module has cost so far.
 struct ModuleReport {
   std::string type;
@@ -31,6 +42,7 @@ struct ModuleReport {
   std::size_t state_bytes = 0;
 };
 
+// One trial step of the adaptive propagation, for tests and diagnostics.
 struct StepEvent {
   double time;  // time at the start of the trial
   double tc;    // the time constant t_c tried
@@ -46,12 +58,7 @@ class Simulation {
   // `constraints` run after every integrator step, in order (see ConstraintModule);
   // force modules travel inside the network.
   Simulation(ClothNetwork network, ClothState initial, SolverSettings settings,
-             std::vector<std::unique_ptr<ConstraintModule>> constraints = {});
-  // Moving re-points the front/back buffers at the new object's own members.
-  Simulation(Simulation&& other) noexcept;
-  Simulation& operator=(Simulation&&) = delete;
-  Simulation(const Simulation&) = delete;
-  Simulation& operator=(const Simulation&) = delete;
+             std::vector<std::shared_ptr<const ConstraintModule>> constraints = {});
 
   // Propagates `seconds` of simulated time (0 does nothing). Stops early, with
   // the last good state, when the run diverges. The full check (finite state,
@@ -77,7 +84,13 @@ class Simulation {
   const ClothNetwork& network() const { return net_; }
   // For parameter changes between steps; drops cached forces and step bounds.
   ClothNetwork& mutable_network();
+  // A live change of force module `index`'s parameter `name` (SceneModule::
+  // set_parameter): the module is replaced by a changed copy, so copies of
+  // this simulation keep theirs. False when the module has no such parameter.
+  bool set_module_parameter(std::size_t index, const std::string& name, double value);
   void set_external_force(std::size_t node, const Vec3& force);
+  // External forces and the clock the next step's force evaluations read.
+  const ForceInputs& force_inputs() const { return inputs_; }
   // Moves every spring's and node's weights to `material`'s over `steps`
   // accepted steps (a live change of a linguistic input: no jolt).
   void ramp_to_material(const Material& material, int steps = 64);
@@ -97,7 +110,7 @@ class Simulation {
   // fall) would count as runaway once gravity changes.
   void rebase_divergence_check();
 
-  const ClothState& state() const { return *front_; }
+  const ClothState& state() const { return states_[front_]; }
   const SolverSettings& settings() const { return settings_; }
   RunStatus status() const { return status_; }
   const std::string& divergence_reason() const { return reason_; }
@@ -115,7 +128,7 @@ class Simulation {
   // How many equal substeps one fixed step of dt takes now: ceil(dt / step_cap())
   // with substep_above_cap, else 1 (also when adaptive or implicit).
   long substeps();
-  Energy energy() const { return net_.energy(*front_); }
+  Energy energy() const { return net_.energy(state()); }
 
   // The active modules (force modules first, then constraints in run order).
   std::vector<ModuleReport> module_reports() const;
@@ -146,40 +159,55 @@ class Simulation {
   void after_accept(bool force_check);
   void run_check();
   bool advance_ramp();
+  // What a change leaves stale: `weights` (the network's weights or the
+  // integrator) also drops the step cap; `forces` (the state, an external force,
+  // a gust's time) only the forces cached at the current state.
+  enum class Stale { forces, weights };
+  void invalidate(Stale what);
+  ClothState& front() { return states_[front_]; }
+  ClothState& back() { return states_[1 - front_]; }
 
+  // The model: read by a step, changed only between steps.
   ClothNetwork net_;
+  std::vector<std::shared_ptr<const ConstraintModule>> constraints_;
   SolverSettings settings_;
-  std::unique_ptr<Integrator> integrator_;
-  std::vector<std::unique_ptr<ConstraintModule>> constraints_;
-  // Where the nodes were when a fixed step taken in place began: what the
-  // constraints read as the start (sized only when there are constraints).
-  NodeVectors start_;
-  ClothState a_, b_, checkpoint_;
-  ClothState* front_ = &a_;
-  ClothState* back_ = &b_;
-  NodeVectors force_a_, force_b_;
-  NodeVectors* force_front_ = &force_a_;  // net_forces(*front_) when front_forces_valid_
-  NodeVectors* force_back_ = &force_b_;
-  bool front_forces_valid_ = false;
-  int degenerate_ = 0;
+  double force_scale_ = 0;  // largest node weight, for the absolute growth tolerance
+
+  // The state: everything a step writes.
+  std::array<ClothState, 2> states_;  // the current state and the back buffer
+  int front_ = 0;
+  ForceInputs inputs_;
+  std::vector<Cloned<ModuleState>> module_states_;  // one per constraint (null: keeps nothing)
+  ClothState checkpoint_;
   DivergenceMonitor monitor_;
   WeightRamp ramp_;
-
   RunStatus status_ = RunStatus::ok;
   std::string reason_;
   double time_ = 0, checkpoint_time_ = 0;
   long steps_ = 0, checkpoint_steps_ = 0, rejected_ = 0;
   long force_evaluations_ = 0, cg_iterations_ = 0;
   int steps_since_check_ = 0;
-  double cap_ = -1;                        // cached step cap; < 0 means stale
-  double former_force_ = -1;               // max |sum f| at the current state; < 0 means unknown
-  double force_scale_ = 0;                 // largest node weight, for the absolute growth tolerance
-  std::vector<double> bound_k_, bound_d_;  // scratch of the stability bound
-  long budget_left_ = 0;                   // trial steps this advance() may still take
+  int degenerate_ = 0;
+  long budget_left_ = 0;  // trial steps this advance() may still take
   bool budget_exhausted_ = false;
+  bool interrupted_ = false;
+
+  // Caches and scratch, derived from the two above (invalidate()).
+  Cloned<Integrator> integrator_;
+  // Where the nodes were when a fixed step taken in place began: what the
+  // constraints read as the start (sized only when there are constraints).
+  NodeVectors start_;
+  std::array<NodeVectors, 2> forces_;  // forces_[force_front_] = net_forces(state()) when valid
+  int force_front_ = 0;
+  bool front_forces_valid_ = false;
+  double cap_ = -1;           // cached step cap; < 0 means stale
+  double former_force_ = -1;  // max |sum f| at the current state; < 0 means unknown
+  std::vector<double> bound_k_, bound_d_;  // scratch of the stability bound
+
+  // Diagnostics and callbacks: no step result depends on them.
+  std::vector<ModuleClock> constraint_clocks_;
   std::function<void(const StepEvent&)> observer_;
   std::function<bool(const Simulation&)> interrupt_;
-  bool interrupted_ = false;
 };
 
 }  // namespace neurocloth

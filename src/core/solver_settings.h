@@ -10,6 +10,7 @@
 
 #include "integrator.h"
 #include "physical_limits.h"
+#include "step_controller.h"
 
 namespace neurocloth {
 
@@ -18,7 +19,9 @@ struct AdaptiveSettings {
   double safety = 0.5;  // t_c never exceeds safety * stable_step_bound
   // "The force grows" means max|F| > former + growth_tolerance * max(former, weight scale).
   double growth_tolerance = 0.05;
-  double min_step_fraction = 1.0 / 1024.0;  // floor on t_c, as a fraction of its cap
+  // The one floor on a trial step, as a fraction of its cap (step_controller.h):
+  // the adaptive t_c and the implicit step's pieces.
+  double min_step_fraction = kDefaultMinStepFraction;
 };
 
 struct DivergenceSettings {

@@ -38,9 +38,14 @@ double stable_step_bound(const ClothNetwork& net, double limit, std::vector<doub
 }
 
 double explicit_euler_step_bound(const ClothNetwork& net) {
+  std::vector<double> d_sum;
+  return explicit_euler_step_bound(net, d_sum);
+}
+
+double explicit_euler_step_bound(const ClothNetwork& net, std::vector<double>& d_sum) {
   double bound = std::numeric_limits<double>::infinity();
   const double slope = net.springs.function.max_slope();
-  std::vector<double> d_sum(net.node_count(), 0.0);
+  d_sum.assign(net.node_count(), 0.0);
   for (std::size_t s = 0; s < net.spring_count(); ++s) {
     const double k = std::abs(net.springs.stiffness[s]) * slope;
     const double d = std::abs(net.springs.damping[s]);
@@ -59,7 +64,7 @@ double integrator_step_bound(const ClothNetwork& net, const Integrator& integrat
                              std::vector<double>& k_sum, std::vector<double>& d_sum) {
   const double bound = stable_step_bound(net, integrator.stability_limit(), k_sum, d_sum);
   if (integrator.kind() != IntegratorKind::explicit_euler) return bound;
-  const double damped = explicit_euler_step_bound(net);
+  const double damped = explicit_euler_step_bound(net, d_sum);
   return damped > 0.0 ? std::min(bound, damped) : bound;
 }
 

@@ -27,6 +27,7 @@ double stable_step_bound(const ClothNetwork& net, double stability_limit,
 // same ratio), and h < 2 / gamma_i for the overdamped ones. This returns that
 // step: 0 when some stiff spring has no damping. Measured in docs/stability.md.
 double explicit_euler_step_bound(const ClothNetwork& net);
+double explicit_euler_step_bound(const ClothNetwork& net, std::vector<double>& d_sum);
 
 // The step the adaptive cap and the run-time guard scale by `safety`: the
 // Gershgorin bound at the integrator's limit, and for forward Euler also its

@@ -11,11 +11,12 @@ class VelocityVerlet final : public Integrator {
   explicit VelocityVerlet(const ClothNetwork& net)
       : acc_(net.node_count()), force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::verlet; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<VelocityVerlet>(*this); }
   int order() const override { return 2; }
   double stability_limit() const override { return 2.0; }
 
-  StepReport step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-                  ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                  const NodeVectors& F, double h, ClothState& out) override {
     const std::size_t n = net.node_count();
     net.accelerations(F, acc_);
     for (std::size_t i = 0; i < n; ++i) {  // kick, drift
@@ -26,7 +27,7 @@ class VelocityVerlet final : public Integrator {
       out.y[i] = in.y[i] + h * out.vy[i];
       out.z[i] = in.z[i] + h * out.vz[i];
     }
-    net.net_forces(out, force_);
+    net.net_forces(out, inputs, force_);
     net.accelerations(force_, acc_);
     for (std::size_t i = 0; i < n; ++i) {  // kick
       out.vx[i] += 0.5 * h * acc_.x[i];

@@ -6,6 +6,7 @@
 // Stiffness and mass move geometrically (a factor of 10 takes equal factors
 // per step), damping and friction linearly (they may be zero); the schedule
 // is smoothstep, so the rate of change is zero at both ends.
+#include <cstdint>
 #include <vector>
 
 #include "cloth_network.h"
@@ -14,14 +15,28 @@ namespace neurocloth {
 
 class WeightRamp {
  public:
-  // From `net`'s current weights to `target`'s (same topology), over `steps` >= 1.
-  void start(const ClothNetwork& net, const ClothNetwork& target, int steps);
+  // From `net`'s current weights to `target` (for the same network), over `steps` >= 1.
+  void start(const ClothNetwork& net, const MaterialWeights& target, int steps);
   bool active() const { return step_ < steps_; }
   // Writes the next step's weights into `net`; false when there was nothing to do.
   bool advance(ClothNetwork& net);
 
+  // One weight array's path. Geometric where both ends are positive, linear
+  // otherwise. A material change scales whole families of weights by one
+  // factor, so the geometric ratios take a few distinct values: each step
+  // raises each distinct ratio to its power once, not once per weight.
+  class Path {
+   public:
+    void start(const std::vector<double>& from, const std::vector<double>& to, bool geometric);
+    void write(double s, std::vector<double>& out);  // s in [0, 1]; out = to at s = 1
+   private:
+    std::vector<double> from_, to_;
+    std::vector<std::int32_t> ratio_of_;  // per weight: its ratio's index, or -1 (linear)
+    std::vector<double> ratios_, factors_;
+  };
+
  private:
-  std::vector<double> k0_, k1_, d0_, d1_, w0_, w1_, f0_, f1_;
+  Path stiffness_, damping_, inverse_mass_, friction_;
   int step_ = 0, steps_ = 0;
 };
 

@@ -175,8 +175,8 @@ void LiveScene::set_parameter(const std::string& name, double value) {
     sim.rebase_divergence_check();  // the energy budget was for the old gravity
   } else if (const int w = axis_of(name, "wind."); w >= 0) {
     const std::string key = std::string("velocity.") + name.back();
-    for (const auto& m : sim.mutable_network().force_modules)
-      m->set_parameter(key, value);
+    for (std::size_t k = 0; k < sim.network().force_modules.size(); ++k)
+      sim.set_module_parameter(k, key, value);
     (*wind_)[w] = value;
     sim.rebase_divergence_check();  // and for the old wind
   } else if (name.compare(0, 6, "input.") == 0) {

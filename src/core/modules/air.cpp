@@ -19,8 +19,10 @@ class AirDrag final : public ForceModule {
  public:
   explicit AirDrag(const AirDragSpec& spec) : rate_(spec.rate) {}
   const char* type() const override { return "air_drag"; }
+  std::shared_ptr<ForceModule> clone() const override { return std::make_shared<AirDrag>(*this); }
 
-  void add_forces(const ClothNetwork& net, const ClothState& s, NodeVectors& F) const override {
+  void add_forces(const ClothNetwork& net, const ForceInputs&, const ClothState& s,
+                  NodeVectors& F) const override {
     // Masses are read from the network on every call, not cached: a material
     // change or weight ramp rescales them between steps. Pinned nodes get the
     // force too; the mass layer masks their acceleration, and skipping them
@@ -83,16 +85,16 @@ class Wind final : public ForceModule {
       const auto& p = topology.rest_positions;
       area_ += 0.5 * (p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]).norm();
     }
-    begin_step(0.0);  // forces evaluated before any step (relaxation, tests) see w(0)
   }
 
   const char* type() const override { return "wind"; }
+  std::shared_ptr<ForceModule> clone() const override { return std::make_shared<Wind>(*this); }
+  bool time_dependent() const override { return amplitude_ != 0.0; }
   std::size_t state_bytes() const override {
     return (a_.capacity() + b_.capacity() + c_.capacity()) * sizeof(std::int32_t);
   }
 
-  // "velocity.x|y|z": the mean wind, m/s. The current step's wind follows at
-  // once, at the gust factor already frozen for it.
+  // "velocity.x|y|z": the mean wind, m/s.
   bool set_parameter(const std::string& name, double value) override {
     const int axis = name == "velocity.x"   ? 0
                      : name == "velocity.y" ? 1
@@ -100,21 +102,7 @@ class Wind final : public ForceModule {
                                             : -1;
     if (axis < 0) return false;
     base_[axis] = value;
-    wind_[axis] = value * factor_;
     return true;
-  }
-
-  // The gust is sampled once per step, so every force evaluation of one step
-  // (RK4 stages, the implicit solve) sees the same wind and add_forces stays a
-  // pure function of the state.
-  bool begin_step(double time) override {
-    const double factor = amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(time, period_);
-    const bool changed = factor != factor_;
-    factor_ = factor;
-    wind_[0] = base_.x() * factor;
-    wind_[1] = base_.y() * factor;
-    wind_[2] = base_.z() * factor;
-    return changed;
   }
 
   // The cloth carried at the strongest gust, plus the strongest force the wind
@@ -135,7 +123,13 @@ class Wind final : public ForceModule {
   //   lift  0.5 rho A |u|^2 C_L c (n - c uhat)   = rho |u|^2 / 4 C_L d / |N| (N - d uhat)
   // and each vertex takes a third. Written in N so that only |u| and |N| need a
   // square root and nothing is normalised twice.
-  void add_forces(const ClothNetwork&, const ClothState& s, NodeVectors& F) const override {
+  // The gust is sampled at the step's start (inputs.time), so every force
+  // evaluation of one step (RK4 stages, the implicit solve) sees the same wind.
+  void add_forces(const ClothNetwork&, const ForceInputs& inputs, const ClothState& s,
+                  NodeVectors& F) const override {
+    const double factor =
+        amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(inputs.time, period_);
+    const double wind[3] = {base_.x() * factor, base_.y() * factor, base_.z() * factor};
     const double* x = s.x.data();
     const double* y = s.y.data();
     const double* z = s.z.data();
@@ -149,9 +143,9 @@ class Wind final : public ForceModule {
     const std::size_t count = a_.size();
     for (std::size_t t = 0; t < count; ++t) {
       const std::int32_t a = a_[t], b = b_[t], c = c_[t];
-      const double ux = wind_[0] - (vx[a] + vx[b] + vx[c]) * (1.0 / 3.0);
-      const double uy = wind_[1] - (vy[a] + vy[b] + vy[c]) * (1.0 / 3.0);
-      const double uz = wind_[2] - (vz[a] + vz[b] + vz[c]) * (1.0 / 3.0);
+      const double ux = wind[0] - (vx[a] + vx[b] + vx[c]) * (1.0 / 3.0);
+      const double uy = wind[1] - (vy[a] + vy[b] + vy[c]) * (1.0 / 3.0);
+      const double uz = wind[2] - (vz[a] + vz[b] + vz[c]) * (1.0 / 3.0);
       const double u2 = ux * ux + uy * uy + uz * uz;
       if (u2 <= kMinSpeed2) continue;
       const double e1x = x[b] - x[a], e1y = y[b] - y[a], e1z = z[b] - z[a];
@@ -190,9 +184,7 @@ class Wind final : public ForceModule {
   double amplitude_, period_;
   double density_, drag_, lift_, skin_;
   double area_ = 0;                      // the cloth's rest area, m^2 (for the energy bound)
-  double factor_ = 0;                    // the gust factor frozen for the current step
   std::vector<std::int32_t> a_, b_, c_;  // triangle corners
-  double wind_[3] = {0, 0, 0};           // w(t) for the current step, m/s
 };
 
 }  // namespace

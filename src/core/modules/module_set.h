@@ -9,9 +9,10 @@
 
 namespace neurocloth {
 
+// Both kinds are model: immutable once built, so copies of a simulation share them.
 struct ModuleSet {
-  std::vector<std::shared_ptr<ForceModule>> forces;  // go into the network's force evaluation
-  std::vector<std::unique_ptr<ConstraintModule>> constraints;  // run after each step, by phase
+  std::vector<std::shared_ptr<const ForceModule>> forces;  // in the network's force evaluation
+  std::vector<std::shared_ptr<const ConstraintModule>> constraints;  // after each step, by phase
   bool empty() const { return forces.empty() && constraints.empty(); }
 };
 

@@ -25,8 +25,8 @@ class PinMotion final : public ConstraintModule {
     return base_.size() * sizeof(Vec3) + spec_.nodes.size() * sizeof(int);
   }
 
-  void apply(const ClothNetwork&, const StepSpan& span, const StepStart&,
-             ClothState& after) override {
+  void apply(const ClothNetwork&, const StepSpan& span, const StepStart&, ClothState& after,
+             ModuleState*) const override {
     const double t = span.t0 + span.h;
     Vec3 offset, velocity;
     path(t, offset, velocity);

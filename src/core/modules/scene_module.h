@@ -10,70 +10,79 @@
 //    sees it;
 //  - a ConstraintModule corrects the state after each integrator step (a
 //    projection: contact, strain limits, prescribed pin positions).
-#include <chrono>
+//
+// A module is part of the model: built once, then const. What a module keeps
+// from step to step (self-collision's candidate pairs) lives in a ModuleState
+// the simulation owns beside the cloth's state, so a copied simulation carries
+// its own and two copies never share one. A live change of a parameter makes a
+// new module (clone, then set): a copy of the model never sees it.
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "../cloth_state.h"
+#include "../force_inputs.h"
 
 namespace neurocloth {
 
 class ClothNetwork;
 
-// Wall time a module has spent, for RESULT.json and the viewer.
-struct ModuleClock {
-  double seconds = 0;
-  long calls = 0;
-};
-
-// Times one call into `clock` (two steady_clock reads: tens of ns per call).
-class ScopedModuleTimer {
+// What a constraint keeps between steps, and its scratch: part of the
+// simulation's state, copied with it.
+class ModuleState {
  public:
-  explicit ScopedModuleTimer(ModuleClock& c)
-      : clock_(c), start_(std::chrono::steady_clock::now()) {}
-  ~ScopedModuleTimer() {
-    clock_.seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    ++clock_.calls;
-  }
-  ScopedModuleTimer(const ScopedModuleTimer&) = delete;
-  ScopedModuleTimer& operator=(const ScopedModuleTimer&) = delete;
-
- private:
-  ModuleClock& clock_;
-  std::chrono::steady_clock::time_point start_;
+  virtual ~ModuleState() = default;
+  virtual std::unique_ptr<ModuleState> clone() const = 0;
+  virtual std::size_t bytes() const = 0;
 };
+
+// A ModuleState that is one copyable value.
+template <class T>
+class ModuleStateOf final : public ModuleState {
+ public:
+  T value;
+  std::unique_ptr<ModuleState> clone() const override {
+    return std::make_unique<ModuleStateOf>(*this);
+  }
+  std::size_t bytes() const override { return value.bytes(); }
+};
+
+// The value inside a state a module made with ModuleStateOf<T>.
+template <class T>
+T& state_value(ModuleState* state) {
+  return static_cast<ModuleStateOf<T>*>(state)->value;
+}
 
 class SceneModule {
  public:
   virtual ~SceneModule() = default;
   // The scene file's "type" ("box", "wind", ...).
   virtual const char* type() const = 0;
-  // Bytes of per-node or per-triangle state the module holds (for the test
+  // Bytes of per-node or per-triangle data the module holds (for the test
   // that an undeclared module allocates nothing, and for the viewer).
   virtual std::size_t state_bytes() const { return 0; }
   // A live change of one declared number between steps ("velocity.x" for wind),
-  // for the viewer's controls. False when the module has no such parameter; the
-  // caller checks the range and drops cached forces (Simulation::mutable_network).
+  // for the viewer's controls, made on a fresh clone (see above). False when the
+  // module has no such parameter; the caller checks the range.
   virtual bool set_parameter(const std::string& /*name*/, double /*value*/) { return false; }
   // The scene's declaration, as JSON text, for reports and the viewer.
   std::string declaration;
-  mutable ModuleClock clock;
 };
 
 class ForceModule : public SceneModule {
  public:
-  // Once per step, before it: time-dependent inputs (a gust) are frozen for the
-  // step. Returns true when the forces at a given state changed (cached forces
-  // are then recomputed).
-  virtual bool begin_step(double /*time*/) { return false; }
+  virtual std::shared_ptr<ForceModule> clone() const = 0;
+  // True when the forces depend on ForceInputs::time (a gust): forces cached at
+  // a state are then stale at the next step.
+  virtual bool time_dependent() const { return false; }
   // The most kinetic plus spring energy the module can legitimately put into
   // the cloth (J), for the divergence check's budget; `size` is the cloth's
   // extent in m. Dissipative modules put in none.
   virtual double energy_bound(const ClothNetwork& /*net*/, double /*size*/) const { return 0; }
   // Adds the module's force on every node to `force` (N). Must not allocate.
-  virtual void add_forces(const ClothNetwork& net, const ClothState& state,
-                          NodeVectors& force) const = 0;
+  // `inputs` are the step's (its time); `net` is the model this module is part of.
+  virtual void add_forces(const ClothNetwork& net, const ForceInputs& inputs,
+                          const ClothState& state, NodeVectors& force) const = 0;
 };
 
 // Where the nodes were when the step began (positions only: no constraint
@@ -102,10 +111,14 @@ class ConstraintModule : public SceneModule {
   // self-collision (contact has the last word on where a node may be).
   enum Phase { prescribe = 0, limit = 1, contact = 2, self_contact = 3 };
   virtual Phase phase() const = 0;
+  // A fresh state for a cloth of this module's topology; null when the module
+  // keeps nothing between steps.
+  virtual std::unique_ptr<ModuleState> make_state() const { return nullptr; }
   // Corrects `after` (positions and velocities) given the state the step
-  // started from. Pinned nodes (free == 0) are moved only by prescribe modules.
+  // started from; `state` is what make_state() made, carried by the caller.
+  // Pinned nodes (free == 0) are moved only by prescribe modules.
   virtual void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
-                     ClothState& after) = 0;
+                     ClothState& after, ModuleState* state) const = 0;
 };
 
 }  // namespace neurocloth

@@ -43,6 +43,20 @@ constexpr double kInsideTolerance = 1e-9;
 constexpr double kDegenerate = 1e-20;
 
 class SelfCollision final : public ConstraintModule {
+  struct Pair {
+    std::int32_t node, triangle;
+  };
+  // What detection found, kept for the steps that follow (see candidates_valid).
+  struct Candidates {
+    SpatialHash hash;
+    std::vector<Pair> pairs;  // the candidates, in detection order
+    NodeVectors ref;          // positions at the last detection
+    bool detected = false;
+    std::size_t bytes() const {
+      return hash.bytes() + pairs.capacity() * sizeof(Pair) + ref.allocated_bytes();
+    }
+  };
+
  public:
   SelfCollision(const SelfCollisionSpec& spec, const ClothTopology& topology)
       : thickness_(spec.thickness), margin_(0.5 * spec.thickness), iterations_(spec.iterations) {
@@ -63,36 +77,39 @@ class SelfCollision final : public ConstraintModule {
             (topology.rest_positions[t[(e + 1) % 3]] - topology.rest_positions[t[e]]).norm();
     }
     node_count_ = topology.rest_positions.size();
-    ref_.resize(node_count_);
     // Cells about as wide as a triangle's box (an edge plus the reach on either
     // side): most boxes are then filed once, and a cell holds a few triangles.
     const double mean_edge = triangles_.empty() ? 0.0 : edge_sum / (3.0 * triangles_.size());
-    const double cell = (std::isfinite(mean_edge) ? mean_edge : 0.0) + 2.0 * (thickness_ + margin_);
-    hash_.reset(cell, triangles_.size());
-    // A node over a flat sheet has one or two candidates besides its own
-    // triangles; folds have more. Grows (once) if a scene needs more.
-    pairs_.reserve(4 * node_count_);
+    cell_ = (std::isfinite(mean_edge) ? mean_edge : 0.0) + 2.0 * (thickness_ + margin_);
   }
 
   const char* type() const override { return "self_collision"; }
   Phase phase() const override { return self_contact; }
-  std::size_t state_bytes() const override {
-    return triangles_.capacity() * sizeof(triangles_[0]) + hash_.bytes() +
-           pairs_.capacity() * sizeof(Pair) + 3 * ref_.size() * sizeof(double);
+  std::size_t state_bytes() const override { return triangles_.capacity() * sizeof(triangles_[0]); }
+  std::unique_ptr<ModuleState> make_state() const override {
+    auto state = std::make_unique<ModuleStateOf<Candidates>>();
+    Candidates& c = state->value;
+    c.ref.resize(node_count_);
+    c.hash.reset(cell_, triangles_.size());
+    // A node over a flat sheet has one or two candidates besides its own
+    // triangles; folds have more. Grows (once) if a scene needs more.
+    c.pairs.reserve(4 * node_count_);
+    return state;
   }
 
-  void apply(const ClothNetwork& net, const StepSpan&, const StepStart& before,
-             ClothState& after) override {
+  void apply(const ClothNetwork& net, const StepSpan&, const StepStart& before, ClothState& after,
+             ModuleState* state) const override {
     if (triangles_.empty()) return;
     if (after.size() != node_count_ || before.size() != node_count_ ||
         net.node_count() != node_count_)
       throw std::invalid_argument("self_collision: state size differs from the cloth's");
-    if (!candidates_valid(after)) detect(after);
+    Candidates& cand = state_value<Candidates>(state);
+    if (!candidates_valid(cand, after)) detect(cand, after);
     // Relaxation: each pass separates every pair still too close, in a fixed
     // order (Gauss-Seidel: a pair sees the corrections of the pairs before it).
     for (int pass = 0; pass < iterations_; ++pass) {
       long pushed = 0;
-      for (const Pair& c : pairs_)
+      for (const Pair& c : cand.pairs)
         if (separate(net, before, after, c.node, triangles_[static_cast<std::size_t>(c.triangle)]))
           ++pushed;
       // A pass that moved nothing leaves the next one nothing to do either.
@@ -107,11 +124,12 @@ class SelfCollision final : public ConstraintModule {
   // than margin / 2 since, a node now within thickness of a triangle was within
   // thickness + margin of it then (it and the triangle's nearest point each
   // moved margin / 2 at most), so the pair is among them.
-  bool candidates_valid(const ClothState& s) const {
-    if (!detected_) return false;
+  bool candidates_valid(const Candidates& c, const ClothState& s) const {
+    if (!c.detected) return false;
+    const NodeVectors& ref = c.ref;
     const double limit = 0.25 * margin_ * margin_;
     for (std::size_t i = 0; i < node_count_; ++i) {
-      const double dx = s.x[i] - ref_.x[i], dy = s.y[i] - ref_.y[i], dz = s.z[i] - ref_.z[i];
+      const double dx = s.x[i] - ref.x[i], dy = s.y[i] - ref.y[i], dz = s.z[i] - ref.z[i];
       if (!(dx * dx + dy * dy + dz * dz <= limit)) return false;  // NaN too: detect again
     }
     return true;
@@ -120,27 +138,27 @@ class SelfCollision final : public ConstraintModule {
   // The pairs whose node lies in the triangle's box grown by thickness +
   // margin, less a node's own triangles, in node order. Pairs of pinned nodes
   // are kept: a node may be unpinned before the next detection.
-  void detect(const ClothState& after) {
-    file_triangles(after);
-    pairs_.clear();
+  void detect(Candidates& c, const ClothState& after) const {
+    file_triangles(c.hash, after);
+    c.pairs.clear();
     for (std::size_t i = 0; i < node_count_; ++i) {
       const double p[3] = {after.x[i], after.y[i], after.z[i]};
       const auto node = static_cast<std::int32_t>(i);
-      hash_.for_each_containing(p, [&](std::int32_t t) {
+      c.hash.for_each_containing(p, [&](std::int32_t t) {
         const auto& tri = triangles_[static_cast<std::size_t>(t)];
-        if (tri[0] != node && tri[1] != node && tri[2] != node) pairs_.push_back({node, t});
+        if (tri[0] != node && tri[1] != node && tri[2] != node) c.pairs.push_back({node, t});
       });
     }
-    std::copy(after.x.begin(), after.x.end(), ref_.x.begin());
-    std::copy(after.y.begin(), after.y.end(), ref_.y.begin());
-    std::copy(after.z.begin(), after.z.end(), ref_.z.begin());
-    detected_ = true;
+    std::copy(after.x.begin(), after.x.end(), c.ref.x.begin());
+    std::copy(after.y.begin(), after.y.end(), c.ref.y.begin());
+    std::copy(after.z.begin(), after.z.end(), c.ref.z.begin());
+    c.detected = true;
   }
 
   // Rebuilds the hash from the triangles' current boxes grown by thickness +
   // margin: a node that close to a triangle lies inside its grown box.
-  void file_triangles(const ClothState& s) {
-    std::vector<Aabb>& boxes = hash_.boxes();
+  void file_triangles(SpatialHash& hash, const ClothState& s) const {
+    std::vector<Aabb>& boxes = hash.boxes();
     const double reach = thickness_ + margin_;
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       const auto& tri = triangles_[t];
@@ -153,7 +171,7 @@ class SelfCollision final : public ConstraintModule {
         b.hi[a] = std::max({u, v, w}) + reach;
       }
     }
-    hash_.build();
+    hash.build();
   }
 
   // Pushes node i and triangle tri apart if i lies over tri closer than
@@ -255,14 +273,8 @@ class SelfCollision final : public ConstraintModule {
   double margin_;
   int iterations_;
   std::size_t node_count_ = 0;
+  double cell_ = 0;  // the hash's cell size, m
   std::vector<std::array<std::int32_t, 3>> triangles_;
-  SpatialHash hash_;
-  struct Pair {
-    std::int32_t node, triangle;
-  };
-  std::vector<Pair> pairs_;  // the candidates, in detection order
-  NodeVectors ref_;          // positions at the last detection
-  bool detected_ = false;
 };
 
 }  // namespace

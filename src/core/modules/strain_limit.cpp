@@ -48,46 +48,48 @@ class StrainLimit final : public ConstraintModule {
       neighbour_[degree[a_[k]]++] = b_[k];
       neighbour_[degree[b_[k]]++] = a_[k];
     }
-    order_.resize(a_.size());
-    move_a_.resize(a_.size());
-    move_b_.resize(a_.size());
-    depth_.resize(n);
-    start_.resize(n);
+    node_count_ = n;
   }
   const char* type() const override { return "strain_limit"; }
   Phase phase() const override { return limit; }
   std::size_t state_bytes() const override {
-    return (a_.size() + b_.size() + order_.size() + neighbour_.size() + first_.size() +
-            depth_.size()) *
-               sizeof(std::int32_t) +
-           (limit_.size() + move_a_.size() + move_b_.size() + free_mask_.size()) * sizeof(double) +
-           3 * start_.size() * sizeof(double);
+    return (a_.size() + b_.size() + neighbour_.size() + first_.size()) * sizeof(std::int32_t) +
+           limit_.size() * sizeof(double);
   }
-  // Steps whose sweeps ran out before every spring was within its limit.
-  long unconverged_steps() const { return unconverged_; }
+  std::unique_ptr<ModuleState> make_state() const override {
+    auto state = std::make_unique<ModuleStateOf<Plan>>();
+    Plan& p = state->value;
+    p.order.resize(a_.size());
+    p.move_a.resize(a_.size());
+    p.move_b.resize(a_.size());
+    p.depth.resize(node_count_);
+    p.start.resize(node_count_);
+    return state;
+  }
 
-  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart&,
-             ClothState& after) override {
-    if (net.masses.free != free_mask_) plan(net);  // pins changed (or first step)
-    std::copy(after.x.begin(), after.x.end(), start_.x.begin());
-    std::copy(after.y.begin(), after.y.end(), start_.y.begin());
-    std::copy(after.z.begin(), after.z.end(), start_.z.begin());
+  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart&, ClothState& after,
+             ModuleState* state) const override {
+    Plan& p = state_value<Plan>(state);
+    if (net.masses.free != p.free_mask) plan(net, p);  // pins changed (or first step)
+    std::copy(after.x.begin(), after.x.end(), p.start.x.begin());
+    std::copy(after.y.begin(), after.y.end(), p.start.y.begin());
+    std::copy(after.z.begin(), after.z.end(), p.start.z.begin());
     const double* w = net.masses.inverse_mass.data();
     const double slack2 = (1.0 + spec_.tolerance) * (1.0 + spec_.tolerance);
-    const std::size_t count = order_.size();
+    const std::size_t count = p.order.size();
     bool within = false;
     for (int sweep = 0; sweep < spec_.iterations && !within; ++sweep) {
       within = true;
       const bool forward = sweep % 2 == 0;
       for (std::size_t j = 0; j < count; ++j) {
-        const auto k = static_cast<std::size_t>(order_[forward ? j : count - 1 - j]);
+        const auto k = static_cast<std::size_t>(p.order[forward ? j : count - 1 - j]);
         const auto a = static_cast<std::size_t>(a_[k]), b = static_cast<std::size_t>(b_[k]);
         const double dx = after.x[b] - after.x[a], dy = after.y[b] - after.y[a],
                      dz = after.z[b] - after.z[a];
         const double len2 = dx * dx + dy * dy + dz * dz;
         const double lim = limit_[k];
         if (len2 <= lim * lim * slack2) continue;
-        const double wa = move_a_[k] * w[a], wb = move_b_[k] * w[b];
+        const double wa = p.move_a[k] * w[a], wb = p.move_b[k] * w[b];
         if (wa + wb == 0.0) continue;  // both ends pinned: nothing may move
         within = false;
         const double len = std::sqrt(len2);
@@ -101,59 +103,72 @@ class StrainLimit final : public ConstraintModule {
         after.z[b] -= wb * excess * dz;
       }
     }
-    if (!within) ++unconverged_;
+    if (!within) ++p.unconverged;
     const double inv_h = 1.0 / span.h;
     for (std::size_t i = 0; i < after.size(); ++i) {
-      after.vx[i] += (after.x[i] - start_.x[i]) * inv_h;
-      after.vy[i] += (after.y[i] - start_.y[i]) * inv_h;
-      after.vz[i] += (after.z[i] - start_.z[i]) * inv_h;
+      after.vx[i] += (after.x[i] - p.start.x[i]) * inv_h;
+      after.vy[i] += (after.y[i] - p.start.y[i]) * inv_h;
+      after.vz[i] += (after.z[i] - p.start.z[i]) * inv_h;
     }
   }
 
  private:
   // Distance in springs from every node to the nearest pin (breadth first),
   // then which end of each spring moves and the order of the sweep.
-  void plan(const ClothNetwork& net) {
-    free_mask_ = net.masses.free;
-    const std::size_t n = depth_.size();
-    std::fill(depth_.begin(), depth_.end(), INT_MAX);
+  // Planned from the pins: per spring, whether each end may move, and the sweep
+  // order; kept until the pins change.
+  struct Plan {
+    std::vector<double> free_mask;  // the free mask the plan was made for (1 free, 0 pinned)
+    std::vector<std::int32_t> depth, order;
+    std::vector<double> move_a, move_b;
+    NodeVectors start;     // positions before the limits, for the velocity update
+    long unconverged = 0;  // steps whose sweeps ran out before every spring was within its limit
+    std::size_t bytes() const {
+      return (depth.size() + order.size()) * sizeof(std::int32_t) +
+             (free_mask.size() + move_a.size() + move_b.size()) * sizeof(double) +
+             start.allocated_bytes();
+    }
+  };
+
+  // Distance in springs from every node to the nearest pin (breadth first),
+  // then which end of each spring moves and the order of the sweep.
+  void plan(const ClothNetwork& net, Plan& p) const {
+    p.free_mask = net.masses.free;
+    const std::size_t n = p.depth.size();
+    std::fill(p.depth.begin(), p.depth.end(), INT_MAX);
     std::vector<std::int32_t> queue;
     for (std::size_t i = 0; i < n; ++i)
-      if (free_mask_[i] == 0.0) {
-        depth_[i] = 0;
+      if (p.free_mask[i] == 0.0) {
+        p.depth[i] = 0;
         queue.push_back(static_cast<std::int32_t>(i));
       }
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const int i = queue[q];
       for (int e = first_[i]; e < first_[i + 1]; ++e) {
         const int j = neighbour_[e];
-        if (depth_[j] == INT_MAX) {
-          depth_[j] = depth_[i] + 1;
+        if (p.depth[j] == INT_MAX) {
+          p.depth[j] = p.depth[i] + 1;
           queue.push_back(j);
         }
       }
     }
     for (std::size_t k = 0; k < a_.size(); ++k) {
-      const int da = depth_[a_[k]], db = depth_[b_[k]];
-      move_a_[k] = free_mask_[a_[k]] * (da >= db ? 1.0 : 0.0);
-      move_b_[k] = free_mask_[b_[k]] * (db >= da ? 1.0 : 0.0);
+      const int da = p.depth[a_[k]], db = p.depth[b_[k]];
+      p.move_a[k] = p.free_mask[a_[k]] * (da >= db ? 1.0 : 0.0);
+      p.move_b[k] = p.free_mask[b_[k]] * (db >= da ? 1.0 : 0.0);
     }
-    std::iota(order_.begin(), order_.end(), 0);
-    std::stable_sort(order_.begin(), order_.end(), [&](std::int32_t p, std::int32_t q) {
-      return std::min(depth_[a_[p]], depth_[b_[p]]) < std::min(depth_[a_[q]], depth_[b_[q]]);
+    std::iota(p.order.begin(), p.order.end(), 0);
+    const std::vector<std::int32_t>& depth = p.depth;
+    std::stable_sort(p.order.begin(), p.order.end(), [&](std::int32_t u, std::int32_t v) {
+      return std::min(depth[a_[u]], depth[b_[u]]) < std::min(depth[a_[v]], depth[b_[v]]);
     });
   }
 
   StrainLimitSpec spec_;
+  std::size_t node_count_ = 0;
   std::vector<std::int32_t> a_, b_;
   std::vector<double> limit_;  // max_stretch * rest length, m
   std::vector<std::int32_t> first_, neighbour_;
-  // Planned from the pins: per spring, whether each end may move, and the sweep order.
-  std::vector<double> free_mask_;  // the free mask the plan was made for (1 free, 0 pinned)
-  std::vector<std::int32_t> depth_, order_;
-  std::vector<double> move_a_, move_b_;
-  NodeVectors start_;  // positions before the limits, for the velocity update
-  long unconverged_ = 0;
 };
 
 }  // namespace
