@@ -102,38 +102,43 @@ void LogLogChart::write_png(const std::string& path) const {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
 
-  // Grid: a line at every decade, short ticks at 2..9 times each.
+  // Grid: a line at every decade, short ticks at 2..9 times each, labels at
+  // the decades. One axis at a time: `along` is a pixel on the axis, `across`
+  // one perpendicular to it.
   cairo_set_line_width(cr, 1);
-  for (int k = x_lo_; k <= x_hi_; ++k) {
-    const double px = to_pixel(std::pow(10.0, k), std::pow(10.0, y_lo_)).first;
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, px, kTop);
-    cairo_line_to(cr, px, bottom);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    power_of_ten(cr, k, px, bottom + 22, 0.5);
-    for (int m = 2; m <= 9 && k < x_hi_; ++m) {
-      const double mx = to_pixel(m * std::pow(10.0, k), std::pow(10.0, y_lo_)).first;
-      cairo_move_to(cr, mx, bottom);
-      cairo_line_to(cr, mx, bottom - 4);
+  auto draw_axis = [&](bool x_axis) {
+    const int lo = x_axis ? x_lo_ : y_lo_, hi = x_axis ? x_hi_ : y_hi_;
+    auto pixel_of = [&](double v) {
+      return x_axis ? to_pixel(v, std::pow(10.0, y_lo_)).first
+                    : to_pixel(std::pow(10.0, x_lo_), v).second;
+    };
+    auto line = [&](double along, double across0, double across1) {
+      if (x_axis) {
+        cairo_move_to(cr, along, across0);
+        cairo_line_to(cr, along, across1);
+      } else {
+        cairo_move_to(cr, across0, along);
+        cairo_line_to(cr, across1, along);
+      }
       cairo_stroke(cr);
+    };
+    // The axis line's side, and the way its ticks point (into the plot).
+    const double base = x_axis ? bottom : kLeft, tick = x_axis ? -4 : 4;
+    for (int k = lo; k <= hi; ++k) {
+      const double p = pixel_of(std::pow(10.0, k));
+      cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+      line(p, x_axis ? kTop : kLeft, x_axis ? bottom : right);
+      cairo_set_source_rgb(cr, 0, 0, 0);
+      if (x_axis)
+        power_of_ten(cr, k, p, bottom + 22, 0.5);
+      else
+        power_of_ten(cr, k, kLeft - 8, p + 5, 1);
+      for (int m = 2; m <= 9 && k < hi; ++m)
+        line(pixel_of(m * std::pow(10.0, k)), base, base + tick);
     }
-  }
-  for (int k = y_lo_; k <= y_hi_; ++k) {
-    const double py = to_pixel(std::pow(10.0, x_lo_), std::pow(10.0, k)).second;
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, kLeft, py);
-    cairo_line_to(cr, right, py);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    power_of_ten(cr, k, kLeft - 8, py + 5, 1);
-    for (int m = 2; m <= 9 && k < y_hi_; ++m) {
-      const double my = to_pixel(std::pow(10.0, x_lo_), m * std::pow(10.0, k)).second;
-      cairo_move_to(cr, kLeft, my);
-      cairo_line_to(cr, kLeft + 4, my);
-      cairo_stroke(cr);
-    }
-  }
+  };
+  draw_axis(true);
+  draw_axis(false);
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, kLeft, kTop, right - kLeft, bottom - kTop);
   cairo_stroke(cr);

@@ -38,40 +38,38 @@ std::vector<std::size_t> pareto_front(const std::vector<TradeRow>& rows) {
   return front;
 }
 
-std::optional<std::size_t> cheapest_meeting(const std::vector<TradeRow>& rows, double budget) {
+namespace {
+
+// The usable row that `admit` lets through with the smallest (key, tie) pair;
+// the first such row when two tie on both.
+template <typename Admit>
+std::optional<std::size_t> best_row(const std::vector<TradeRow>& rows, Admit admit,
+                                    double TradeRow::*key, double TradeRow::*tie) {
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const TradeRow& r = rows[i];
-    if (!usable(r) || !(r.position_error_max <= budget)) continue;
-    if (!best) {
-      best = i;
-      continue;
+    if (!usable(r) || !admit(r)) continue;
+    if (best) {
+      const TradeRow& b = rows[*best];
+      if (!(r.*key < b.*key || (r.*key == b.*key && r.*tie < b.*tie))) continue;
     }
-    const TradeRow& b = rows[*best];
-    if (r.wall_per_simulated_second < b.wall_per_simulated_second ||
-        (r.wall_per_simulated_second == b.wall_per_simulated_second &&
-         r.position_error_max < b.position_error_max))
-      best = i;
+    best = i;
   }
   return best;
 }
 
+}  // namespace
+
+std::optional<std::size_t> cheapest_meeting(const std::vector<TradeRow>& rows, double budget) {
+  return best_row(
+      rows, [budget](const TradeRow& r) { return r.position_error_max <= budget; },
+      &TradeRow::wall_per_simulated_second, &TradeRow::position_error_max);
+}
+
 std::optional<std::size_t> most_accurate(const std::vector<TradeRow>& rows) {
-  std::optional<std::size_t> best;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const TradeRow& r = rows[i];
-    if (!usable(r)) continue;
-    if (!best) {
-      best = i;
-      continue;
-    }
-    const TradeRow& b = rows[*best];
-    if (r.position_error_max < b.position_error_max ||
-        (r.position_error_max == b.position_error_max &&
-         r.wall_per_simulated_second < b.wall_per_simulated_second))
-      best = i;
-  }
-  return best;
+  return best_row(
+      rows, [](const TradeRow&) { return true; }, &TradeRow::position_error_max,
+      &TradeRow::wall_per_simulated_second);
 }
 
 }  // namespace neurocloth
