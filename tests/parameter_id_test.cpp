@@ -64,6 +64,17 @@ TEST(ParameterId, ABadNameIsRefusedWithTheTextQuoted) {
   EXPECT_FALSE(parse_parameter("input.mass", ParameterNames{}).has_value()) << "no rule base";
 }
 
+TEST(ParameterId, FieldsAKindDoesNotUseTakeNoPartInEquality) {
+  using Kind = ParameterId::Kind;
+  EXPECT_EQ((ParameterId{Kind::gravity, 0, 3, ModuleParameter::velocity}), ParameterId::gravity(0));
+  EXPECT_EQ((ParameterId{Kind::dt, 2, 1, ModuleParameter::velocity}), ParameterId::of(Kind::dt));
+  EXPECT_EQ((ParameterId{Kind::input, 2, 1, ModuleParameter::velocity}), ParameterId::input(1));
+  EXPECT_NE(ParameterId::gravity(0), ParameterId::gravity(1));
+  EXPECT_NE(ParameterId::input(0), ParameterId::input(1));
+  EXPECT_NE(ParameterId::module(1, ModuleParameter::velocity, 0),
+            ParameterId::module(2, ModuleParameter::velocity, 0));
+}
+
 TEST(ParameterId, AnIdTheNamesLackIsWrittenButNeverParsed) {
   const ParameterNames names = parameter_names(test::asset_scene("hanging"));
   const ParameterId input = ParameterId::input(7);

@@ -40,9 +40,19 @@ bool valid(const std::vector<std::string>& list, int index) {
 
 }  // namespace
 
+// Fields a kind does not use take no part: gravity.x is gravity.x whatever its index says.
 bool operator==(const ParameterId& a, const ParameterId& b) {
-  return a.kind == b.kind && a.axis == b.axis && a.index == b.index &&
-         (a.kind != ParameterId::Kind::module || a.parameter == b.parameter);
+  if (a.kind != b.kind) return false;
+  switch (a.kind) {
+    case ParameterId::Kind::gravity:
+      return a.axis == b.axis;
+    case ParameterId::Kind::input:
+      return a.index == b.index;
+    case ParameterId::Kind::module:
+      return a.index == b.index && a.parameter == b.parameter && a.axis == b.axis;
+    default:
+      return true;
+  }
 }
 
 ParameterNames parameter_names(const Scene& scene) {
