@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "grid_builder.h"
 #include "test_support.h"
@@ -174,6 +175,20 @@ TEST(ClothNetwork, EnergyByHand) {
   EXPECT_NEAR(e.kinetic, 0.5 * 0.5 * 1.0, 1e-15);
   EXPECT_NEAR(e.spring, 0.5 * 10.0 * std::pow(std::sqrt(13.0) - 1.0, 2), 1e-12);
   EXPECT_NEAR(e.gravity, 0.5 * 10.0 * 2.0, 1e-12);
+}
+
+// The material is applied once, at build, with each node's share of it.
+TEST(ClothNetwork, BuildWeighsEachNodeByItsShare) {
+  ClothTopology t;
+  t.rest_positions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  t.springs = {{0, 1, SpringFamily::structural}};
+  Material m;
+  m.node_mass = 0.5;
+  const ClothNetwork net = ClothNetwork::build(t, m, {}, {1.0, 0.25});
+  EXPECT_EQ(net.mass(0), 0.5);
+  EXPECT_EQ(net.mass(1), 0.125);
+  EXPECT_EQ(ClothNetwork::build(t, m).mass(1), 0.5) << "no shares: one node mass each";
+  EXPECT_THROW(ClothNetwork::build(t, m, {}, {1.0}), std::invalid_argument);
 }
 
 }  // namespace

@@ -34,30 +34,31 @@ TEST(LiveScene, RangesDependOnTheScene) {
   const V base = {"viscosity", "friction", "dt", "gravity.x", "gravity.y", "gravity.z"};
   EXPECT_EQ(names(parameter_ranges(test::asset_scene("hanging"))), base);
   V wind = base;
-  wind.insert(wind.end(), {"wind.x", "wind.y", "wind.z"});
+  wind.insert(wind.end(), {"wind.velocity.x", "wind.velocity.y", "wind.velocity.z"});
   EXPECT_EQ(names(parameter_ranges(test::asset_scene("flag"))), wind);
 
   // A fuzzy material adds its rule base's inputs, with the rule base's ranges.
   const Scene fuzzy = test::asset_scene("hanging_fuzzy");
   const auto ranges = parameter_ranges(fuzzy);
-  const FuzzyMaterial rules = FuzzyMaterial::load(fuzzy.fuzzy_material->rules_path);
+  const FuzzyMaterial& rules = *fuzzy.fuzzy_material->rules;
   ASSERT_EQ(ranges.size(), base.size() + rules.system().inputs.size());
   for (const auto& v : rules.system().inputs) {
-    const ParameterRange* r = find_range(ranges, "input." + v.name);
+    const ParameterRange* r = find_range(ranges, test::parameter(fuzzy, "input." + v.name));
     ASSERT_NE(r, nullptr) << v.name;
     EXPECT_EQ(r->min, v.min);
     EXPECT_EQ(r->max, v.max);
   }
-  const ParameterRange* visc = find_range(ranges, "viscosity");
+  const ParameterRange* visc = find_range(ranges, test::parameter("viscosity"));
   ASSERT_NE(visc, nullptr);
   EXPECT_EQ(describe_range(*visc), "[0, 100] N s/m");
-  EXPECT_EQ(find_range(ranges, "wind.x"), nullptr);
+  const ParameterId wind_x = ParameterId::module(0, ModuleParameter::velocity, 0);
+  EXPECT_EQ(find_range(ranges, wind_x), nullptr);
 }
 
 TEST(LiveScene, ViscosityAndFrictionReachEverySpringAndNode) {
   LiveScene live(test::asset_scene("hanging"));
-  EXPECT_EQ(live.apply(SetParameter{"viscosity", 2.5}), "");
-  EXPECT_EQ(live.apply(SetParameter{"friction", 0.7}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("viscosity"), 2.5}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("friction"), 0.7}), "");
   EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 2.5));
   EXPECT_TRUE(all_equal(live.simulation().network().masses.friction, 0.7));
   SimulationStatus s;
@@ -68,14 +69,14 @@ TEST(LiveScene, ViscosityAndFrictionReachEverySpringAndNode) {
 
 TEST(LiveScene, SolverParametersReachTheSimulation) {
   LiveScene live(test::asset_scene("hanging"));
-  EXPECT_EQ(live.apply(SetParameter{"dt", 2e-4}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("dt"), 2e-4}), "");
   EXPECT_EQ(live.apply(SetIntegrator{IntegratorKind::rk4}), "");
   EXPECT_EQ(live.apply(SetAdaptive{true}), "");
   const SolverSettings& s = live.simulation().settings();
   EXPECT_EQ(s.dt, 2e-4);
   EXPECT_EQ(s.integrator, IntegratorKind::rk4);
   EXPECT_TRUE(s.adaptive);
-  EXPECT_EQ(live.apply(SetParameter{"gravity.x", 3}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("gravity.x"), 3}), "");
   EXPECT_EQ(live.simulation().network().gravity, Vec3(3, -9.81, 0));
 }
 
@@ -105,16 +106,18 @@ TEST(LiveScene, ASolverSetAsAWholeReachesTheSimulationOrIsRefused) {
 
 TEST(LiveScene, OutOfRangeAndUnknownParametersAreRefusedAndChangeNothing) {
   LiveScene live(test::asset_scene("hanging"));
-  const std::string high = live.apply(SetParameter{"viscosity", 500});
+  const std::string high = live.apply(SetParameter{test::parameter("viscosity"), 500});
   EXPECT_TRUE(contains(high, "viscosity")) << high;
   EXPECT_TRUE(contains(high, "[0, 100] N s/m")) << high;
-  EXPECT_TRUE(contains(live.apply(SetParameter{"dt", 0.5}), "[1e-05, 0.1] s"));
-  EXPECT_TRUE(contains(live.apply(SetParameter{"friction", std::nan("")}), "friction"));
-  const std::string unknown = live.apply(SetParameter{"viscosty", 1});
-  EXPECT_TRUE(contains(unknown, "unknown parameter 'viscosty'")) << unknown;
+  EXPECT_TRUE(contains(live.apply(SetParameter{test::parameter("dt"), 0.5}), "[1e-05, 0.1] s"));
+  EXPECT_TRUE(
+      contains(live.apply(SetParameter{test::parameter("friction"), std::nan("")}), "friction"));
+  // Ids parsed against another scene: a module or an input this one lacks.
+  const std::string unknown =
+      live.apply(SetParameter{ParameterId::module(0, ModuleParameter::velocity, 0), 1});
+  EXPECT_TRUE(contains(unknown, "unknown parameter 'module#0'")) << unknown;
   EXPECT_TRUE(contains(unknown, "viscosity")) << unknown;  // lists what there is
-  EXPECT_TRUE(contains(live.apply(SetParameter{"wind.x", 1}), "unknown parameter 'wind.x'"));
-  EXPECT_TRUE(contains(live.apply(SetParameter{"input.mass", 0.5}), "unknown parameter"));
+  EXPECT_TRUE(contains(live.apply(SetParameter{ParameterId::input(0), 0.5}), "unknown parameter"));
   EXPECT_FALSE(live.apply(SetIntegrator{static_cast<IntegratorKind>(42)}).empty());
   EXPECT_TRUE(all_equal(live.simulation().network().springs.damping, 0.05));
   EXPECT_EQ(live.simulation().settings().dt, 1e-3);
@@ -154,8 +157,8 @@ TEST(LiveScene, ForcesAreRememberedUntilReleased) {
 TEST(LiveScene, InputChangeRampsToTheDerivedMaterialKeepingTheUsersViscosity) {
   const Scene scene = test::asset_scene("hanging_fuzzy");
   LiveScene live(scene);
-  EXPECT_EQ(live.apply(SetParameter{"viscosity", 0.3}), "");
-  EXPECT_EQ(live.apply(SetParameter{"input.mass", 0.9}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("viscosity"), 0.3}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter(scene, "input.mass"), 0.9}), "");
   EXPECT_TRUE(live.simulation().ramping());
   for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
     live.simulation().advance(0.01);  // the ramp takes 64 accepted steps
@@ -163,7 +166,7 @@ TEST(LiveScene, InputChangeRampsToTheDerivedMaterialKeepingTheUsersViscosity) {
 
   std::map<std::string, double> inputs = scene.fuzzy_material->inputs;
   inputs["mass"] = 0.9;
-  Material expected = FuzzyMaterial::load(scene.fuzzy_material->rules_path).derive(inputs).material;
+  Material expected = scene.fuzzy_material->rules->derive(inputs).material;
   expected.viscosity = 0.3;
   Scene target_scene = scene;
   target_scene.material = expected;
@@ -179,7 +182,8 @@ TEST(LiveScene, InputChangeRampsToTheDerivedMaterialKeepingTheUsersViscosity) {
                                  [](const auto& p) { return p.first == "mass"; });
   ASSERT_NE(mass, s.material_inputs.end());
   EXPECT_EQ(mass->second, 0.9);
-  EXPECT_TRUE(contains(live.apply(SetParameter{"input.mass", 7}), "input.mass"));
+  EXPECT_TRUE(
+      contains(live.apply(SetParameter{test::parameter(scene, "input.mass"), 7}), "input.mass"));
 }
 
 TEST(LiveScene, WindChangesOnlyInWindScenes) {
@@ -191,8 +195,10 @@ TEST(LiveScene, WindChangesOnlyInWindScenes) {
   NodeVectors f0(live.simulation().network().node_count());
   live.simulation().network().net_forces(live.simulation().state(), f0);
 
-  EXPECT_EQ(live.apply(SetParameter{"wind.x", -20}), "");
-  EXPECT_TRUE(contains(live.apply(SetParameter{"wind.z", 80}), "[-50, 50] m/s"));
+  EXPECT_EQ(live.apply(SetParameter{test::parameter(live.scene(), "wind.velocity.x"), -20}), "");
+  EXPECT_TRUE(
+      contains(live.apply(SetParameter{test::parameter(live.scene(), "wind.velocity.z"), 80}),
+               "[-50, 50] m/s"));
   SimulationStatus after;
   live.describe(after);
   EXPECT_EQ(*after.wind, Vec3(-20, 0, 0.8));
@@ -211,8 +217,8 @@ TEST(LiveScene, ResetRestoresTheScenesStateAndParameters) {
   const Scene scene = test::asset_scene("hanging");
   LiveScene live(scene, true);
   const long generation = live.generation();
-  live.apply(SetParameter{"viscosity", 4});
-  live.apply(SetParameter{"dt", 5e-4});
+  live.apply(SetParameter{test::parameter("viscosity"), 4});
+  live.apply(SetParameter{test::parameter("dt"), 5e-4});
   live.apply(SetPinned{0, false});
   live.apply(ApplyForce{10, Vec3(1, 0, 0), Vec3::Zero()});
   live.simulation().advance(0.05);
@@ -245,7 +251,7 @@ TEST(LiveScene, ABrokenSceneOrRuleBaseLeavesTheRunAsItWas) {
   std::ofstream(broken) << "{ \"name\": \"broken\", \"cloth\": { \"grid\": 3 } }";
 
   LiveScene live(test::asset_scene("hanging_fuzzy"));
-  live.apply(SetParameter{"viscosity", 0.2});
+  live.apply(SetParameter{test::parameter("viscosity"), 0.2});
   live.simulation().advance(0.02);
   const std::uint64_t before = test::state_hash(live.simulation().state());
   const long generation = live.generation();
@@ -274,7 +280,36 @@ TEST(LiveScene, NewRulesReplaceTheRuleBase) {
   const std::string path = assets_directory() + "/materials/cloth.fcl";
   EXPECT_EQ(live.apply(LoadRules{path}), "");
   EXPECT_EQ(live.scene().fuzzy_material->rules_path, path);
-  EXPECT_NE(find_range(live.ranges(), "input.elasticity"), nullptr);
+  EXPECT_NE(find_range(live.ranges(), test::parameter(live.scene(), "input.elasticity")), nullptr);
+}
+
+TEST(LiveScene, TheRuleBaseIsReadOnceWithTheScene) {
+  const Scene scene =
+      test::fuzzy_scene_without_its_rules(std::string(NEUROCLOTH_TEST_TMP) + "/live_rules_once");
+  ASSERT_TRUE(scene.fuzzy_material && scene.fuzzy_material->rules);
+  EXPECT_EQ(parameter_ranges(scene).size(),
+            all_parameters(ParameterNames{}).size() + scene.fuzzy_material->inputs.size());
+
+  LiveScene live(scene);  // would throw if it read the rule base again
+  const ParameterId mass = test::parameter(scene, "input.mass");
+  EXPECT_NE(find_range(live.ranges(), mass), nullptr);
+  EXPECT_EQ(live.apply(SetParameter{mass, 0.9}), "");
+  EXPECT_TRUE(live.simulation().ramping());
+  EXPECT_EQ(live.apply(Reset{}), "");
+  EXPECT_EQ(live.apply(SetParameter{mass, 0.1}), "");
+  EXPECT_EQ(live.scene().fuzzy_material->rules, scene.fuzzy_material->rules)
+      << "shared, not copied";
+}
+
+// A rule base the sender has read already is taken as it is, not read again.
+TEST(LiveScene, NewRulesReadByTheSenderAreNotReadAgain) {
+  LiveScene live(test::asset_scene("hanging_fuzzy"));
+  const auto rules = std::make_shared<const FuzzyMaterial>(
+      FuzzyMaterial::load(assets_directory() + "/materials/cloth.fcl"));
+  const std::string gone = std::string(NEUROCLOTH_TEST_TMP) + "/no_such_dir/cloth.fcl";
+  EXPECT_EQ(live.apply(LoadRules{gone, rules}), "");
+  EXPECT_EQ(live.scene().fuzzy_material->rules, rules);
+  EXPECT_EQ(live.scene().fuzzy_material->rules_path, gone);
 }
 
 }  // namespace

@@ -101,7 +101,7 @@ TEST(SimulationCopy, LiveChangesOnACopyStayOnIt) {
   Simulation copy = original;
   bool changed = false;
   for (std::size_t k = 0; k < copy.network().force_modules.size(); ++k)
-    changed |= copy.set_module_parameter(k, "velocity.x", 25.0);
+    changed |= copy.set_module_parameter(k, ParameterId::module(0, ModuleParameter::velocity, 0), 25.0);
   ASSERT_TRUE(changed) << "the flag's wind takes velocity.x";
   copy.mutable_network().gravity = Vec3(0, -3, 0);
   copy.set_external_force(0, Vec3(1, 2, 3));

@@ -104,11 +104,11 @@ TEST(SimulationLiveControls, WindVelocityChangesLikeADeclaredOne) {
   target.velocity = Vec3(-3, 2, 11);
 
   const auto live = make_wind(*declared, scene.topology);
-  EXPECT_TRUE(live->set_parameter("velocity.x", -3));
-  EXPECT_TRUE(live->set_parameter("velocity.y", 2));
-  EXPECT_TRUE(live->set_parameter("velocity.z", 11));
-  EXPECT_FALSE(live->set_parameter("density", 2));
-  EXPECT_FALSE(live->set_parameter("velocity.w", 2));
+  auto velocity = [](int axis) { return ParameterId::module(0, ModuleParameter::velocity, axis); };
+  EXPECT_TRUE(live->set_parameter(velocity(0), -3));
+  EXPECT_TRUE(live->set_parameter(velocity(1), 2));
+  EXPECT_TRUE(live->set_parameter(velocity(2), 11));
+  EXPECT_FALSE(live->set_parameter(velocity(3), 2));
   const auto built = make_wind(target, scene.topology);
 
   const ClothNetwork net = scene.build_network();
@@ -129,7 +129,7 @@ TEST(SimulationLiveControls, WindVelocityChangesLikeADeclaredOne) {
 // Other modules have no live parameters.
 TEST(SimulationLiveControls, ModulesWithoutParametersSayNo) {
   const auto drag = make_air_drag(AirDragSpec{});
-  EXPECT_FALSE(drag->set_parameter("velocity.x", 1));
+  EXPECT_FALSE(drag->set_parameter(ParameterId::module(0, ModuleParameter::velocity, 0), 1));
 }
 
 // --- The run-time guard (docs/stability.md): LiveScene runs with
@@ -162,7 +162,7 @@ TEST(LiveStabilityGuard, ADtAboveTheStableStepRunsInSubstepsAndIsReported) {
   LiveScene live(scene, true);
   EXPECT_EQ(live.stability_notice(), "");
   live.simulation().advance(0.05);
-  EXPECT_EQ(live.apply(SetParameter{"dt", 0.05}), "");  // accepted, not refused
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("dt"), 0.05}), "");  // accepted, not refused
   const std::string notice = live.stability_notice();
   EXPECT_TRUE(contains(notice, "dt = 0.05 s")) << notice;
   EXPECT_TRUE(contains(notice, "network")) << notice;
@@ -172,7 +172,8 @@ TEST(LiveStabilityGuard, ADtAboveTheStableStepRunsInSubstepsAndIsReported) {
   EXPECT_EQ(live.simulation().advance(2.0), RunStatus::ok) << live.simulation().divergence_reason();
   EXPECT_EQ(live.simulation().check_now(), RunStatus::ok);
 
-  EXPECT_EQ(live.apply(SetParameter{"dt", 1e-3}), "");  // back within the bound: no notice
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("dt"), 1e-3}),
+            "");  // back within the bound: no notice
   EXPECT_EQ(live.stability_notice(), "");
   EXPECT_EQ(live.simulation().substeps(), 1);
 }
@@ -190,7 +191,7 @@ TEST(LiveStabilityGuard, ViscosityAtTheTopOfItsRangeIsCaught) {
                 0.1),
             RunStatus::diverged);
   LiveScene live(scene, true);
-  EXPECT_EQ(live.apply(SetParameter{"viscosity", 100}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("viscosity"), 100}), "");
   EXPECT_GT(live.simulation().substeps(), 10);
   EXPECT_TRUE(contains(live.stability_notice(), "substeps")) << live.stability_notice();
   EXPECT_EQ(live.simulation().advance(0.02), RunStatus::ok)  // about 5000 substeps
@@ -207,7 +208,7 @@ TEST(LiveStabilityGuard, AnInputThatStiffensTheMaterialIsCaught) {
   Simulation& sim = live.simulation();
   const double k_before = sim.network().springs.stiffness[0];
   const long before = sim.substeps();
-  ASSERT_EQ(live.apply(SetParameter{"input.elasticity", 0}), "");
+  ASSERT_EQ(live.apply(SetParameter{test::parameter(live.scene(), "input.elasticity"), 0}), "");
   EXPECT_EQ(sim.advance(0.2), RunStatus::ok) << sim.divergence_reason();
   EXPECT_FALSE(sim.ramping());
   EXPECT_GT(sim.network().springs.stiffness[0], 1.5 * k_before);  // measured: 606 -> 1071 N/m
@@ -231,10 +232,10 @@ TEST(LiveStabilityGuard, ForwardEulerIsKeptBelowItsDampedLimitOrWarned) {
   EXPECT_EQ(sim.advance(1.0), RunStatus::ok) << sim.divergence_reason();
   EXPECT_EQ(sim.check_now(), RunStatus::ok);
 
-  EXPECT_EQ(live.apply(SetParameter{"dt", 1e-4}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("dt"), 1e-4}), "");
   EXPECT_EQ(live.stability_notice(), "");
 
-  EXPECT_EQ(live.apply(SetParameter{"viscosity", 0}), "");
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("viscosity"), 0}), "");
   notice = live.stability_notice();
   EXPECT_TRUE(contains(notice, "explicit_euler gains energy")) << notice;
   EXPECT_TRUE(contains(notice, "every step")) << notice;

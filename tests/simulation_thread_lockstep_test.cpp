@@ -56,7 +56,7 @@ TEST(SimulationThreadLockstep, AdvanceTakesWholeStepsAndCarriesTheRemainder) {
 // The thread's own loop never moves time in lockstep, however long it is left alone.
 TEST(SimulationThreadLockstep, WithoutAdvanceTimeStandsStill) {
   SimulationThread sim(test::asset_scene("hanging"), lockstep());
-  sim.post(SetParameter{"viscosity", 0.2});
+  sim.post(SetParameter{test::parameter("viscosity"), 0.2});
   sim.wait_for_commands();
   const long serial = sim.latest()->serial;
   // Long enough for several of the thread's idle wake-ups (every 0.1 s): a
@@ -92,14 +92,14 @@ TEST(SimulationThreadLockstep, TheResultDependsOnTheCommandsNotOnTheirBatching) 
   for (int i = 0; i < 20; ++i)
     commands.push_back(Advance{kFrame});
   commands.push_back(SetPinned{corner - 5, true});
-  commands.push_back(SetParameter{"viscosity", 0.4});
+  commands.push_back(SetParameter{test::parameter("viscosity"), 0.4});
   commands.push_back(ReleaseForce{corner});
   for (int i = 0; i < 20; ++i)
     commands.push_back(Advance{kFrame});
   commands.push_back(SetPaused{true});
   commands.push_back(SingleStep{});
   commands.push_back(SetPaused{false});
-  commands.push_back(SetParameter{"gravity.x", 3});
+  commands.push_back(SetParameter{test::parameter("gravity.x"), 3});
   for (int i = 0; i < 20; ++i)
     commands.push_back(Advance{kFrame});
 
@@ -148,8 +148,8 @@ TEST(SimulationThreadLockstep, ADivergedRunStandsStillAndResetRestartsTheClock) 
   SimulationThread sim(test::asset_scene("hanging"), lockstep());
   sim.post(SetIntegrator{IntegratorKind::explicit_euler});
   sim.post(SetAdaptive{false});
-  sim.post(SetParameter{"dt", 0.1});
-  sim.post(SetParameter{"viscosity", 0});
+  sim.post(SetParameter{test::parameter("dt"), 0.1});
+  sim.post(SetParameter{test::parameter("viscosity"), 0});
   // Forward Euler without viscosity gains energy at every step: within 20 simulated s.
   for (int i = 0; i < 200 && sim.status().run == RunStatus::ok; ++i) {
     sim.post(Advance{0.1});

@@ -93,15 +93,16 @@ SimCommand random_command(std::mt19937_64& rng, int nodes, bool lockstep, const 
   auto vec = [&](double scale) {
     return Vec3(scale * (2 * u(rng) - 1), scale * (2 * u(rng) - 1), scale * (2 * u(rng) - 1));
   };
-  static const char* kNames[] = {
-      "viscosity",        "friction",    "dt",     "gravity.x", "gravity.y",
-      "gravity.z",        "wind.x",      "wind.y", "wind.z",    "input.mass",
-      "input.elasticity", "input.force", "no.such"};
+  // Any kind with any axis and index: most name something in some scene, many
+  // nothing in the running one (refused), as an id parsed against an older scene would.
+  auto id = [&] {
+    const auto kind = static_cast<ParameterId::Kind>(std::uniform_int_distribution<int>(0, 5)(rng));
+    return ParameterId{kind, std::uniform_int_distribution<int>(-1, 3)(rng),
+                       std::uniform_int_distribution<int>(-1, 4)(rng), ModuleParameter::velocity};
+  };
   const int k = std::uniform_int_distribution<int>(0, 99)(rng);
   if (lockstep && k < 25) return Advance{u(rng) < 0.1 ? random_value(rng) : 0.05 * u(rng)};
-  if (k < 40)
-    return SetParameter{kNames[std::uniform_int_distribution<std::size_t>(0, 12)(rng)],
-                        random_value(rng)};
+  if (k < 40) return SetParameter{id(), random_value(rng)};
   if (k < 50) return ApplyForce{node(), u(rng) < 0.05 ? vec(1e300) : vec(5), vec(2)};
   if (k < 56) return ReleaseForce{node()};
   if (k < 62) return SetPinned{node(), u(rng) < 0.5};
@@ -118,7 +119,8 @@ SimCommand random_command(std::mt19937_64& rng, int nodes, bool lockstep, const 
   if (k < 92) return LoadScene{pick(files.scenes)};
   if (k < 95) return LoadRules{pick(files.rules)};
   if (k < 97) return Advance{0.01};  // refused unless lockstep
-  return SetParameter{"dt", 1e-5};   // the smallest step: the step budget's case
+  return SetParameter{ParameterId::of(ParameterId::Kind::dt),
+                      1e-5};  // the smallest step: the step budget's case
 }
 
 const char* mode_name(int mode) {

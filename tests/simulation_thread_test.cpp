@@ -106,16 +106,17 @@ TEST(SimulationThread, StressManyCommandsFromTwoThreadsNoneLost) {
     for (int i = 0; i < kPerThread; ++i) {
       const int k = kind(rng);
       if (k < 20) {
-        sim.post(SetParameter{"viscosity", u(rng)});
+        sim.post(SetParameter{test::parameter("viscosity"), u(rng)});
       } else if (k < 28) {
-        sim.post(SetParameter{"gravity.y", -20 * u(rng)});
+        sim.post(SetParameter{test::parameter("gravity.y"), -20 * u(rng)});
       } else if (k < 32) {
-        sim.post(SetParameter{"dt", 5e-4 + 1e-3 * u(rng)});
+        sim.post(SetParameter{test::parameter("dt"), 5e-4 + 1e-3 * u(rng)});
       } else if (k < 36) {
-        sim.post(SetParameter{"friction", u(rng)});
+        sim.post(SetParameter{test::parameter("friction"), u(rng)});
       } else if (k < 42) {  // refused every time
         ++invalid;
-        sim.post(k % 2 ? SetParameter{"viscosity", 1e6} : SetParameter{"no.such", 1});
+        sim.post(k % 2 ? SetParameter{test::parameter("viscosity"), 1e6}
+                       : SetParameter{ParameterId::input(3), 1});
       } else if (k < 55) {
         sim.post(ApplyForce{node(rng), Vec3(0, 0, 0.2 * u(rng)), Vec3(0, 0, 1)});
       } else if (k < 65) {
@@ -168,7 +169,7 @@ TEST(SimulationThread, StressManyCommandsFromTwoThreadsNoneLost) {
 TEST(SimulationThread, ParameterChangesReachTheSimulation) {
   {
     SimulationThread sim(test::asset_scene("hanging"), flat_out());
-    sim.post(SetParameter{"viscosity", 2.5});
+    sim.post(SetParameter{test::parameter("viscosity"), 2.5});
     sim.wait_for_commands();
     const SimulationStatus s = sim.status();
     EXPECT_EQ(s.viscosity, 2.5);
@@ -178,7 +179,7 @@ TEST(SimulationThread, ParameterChangesReachTheSimulation) {
   // y = y0 + g dt^2 n (n + 1) / 2.
   for (const double g : {-9.81, -20.0, 0.0}) {
     SimulationThread sim(test::asset_scene("free_fall"), paused_options());
-    if (g != -9.81) sim.post(SetParameter{"gravity.y", g});
+    if (g != -9.81) sim.post(SetParameter{test::parameter("gravity.y"), g});
     for (int i = 0; i < 10; ++i)
       sim.post(SingleStep{});
     sim.wait_for_commands();
@@ -241,7 +242,7 @@ TEST(SimulationThread, RefusedCommandsSayWhyAndTheSceneRunsOn) {
   std::ofstream(broken) << "{ \"name\": \"broken\", \"cloth\": ";
 
   SimulationThread sim(test::asset_scene("hanging"), lockstep());
-  sim.post(SetParameter{"viscosity", 500});
+  sim.post(SetParameter{test::parameter("viscosity"), 500});
   sim.wait_for_commands();
   SimulationStatus s = sim.status();
   EXPECT_EQ(s.commands_refused, 1);
@@ -249,11 +250,11 @@ TEST(SimulationThread, RefusedCommandsSayWhyAndTheSceneRunsOn) {
   EXPECT_TRUE(contains(s.last_error, "[0, 100] N s/m")) << s.last_error;
   EXPECT_EQ(s.viscosity, 0.05);
 
-  sim.post(SetParameter{"stiffness", 1});
+  sim.post(SetParameter{ParameterId::module(2, ModuleParameter::velocity, 0), 1});
   sim.wait_for_commands();
   s = sim.status();
   EXPECT_EQ(s.commands_refused, 2);
-  EXPECT_TRUE(contains(s.last_error, "unknown parameter 'stiffness'")) << s.last_error;
+  EXPECT_TRUE(contains(s.last_error, "unknown parameter 'module#2'")) << s.last_error;
 
   sim.post(LoadScene{broken});
   sim.wait_for_commands();
@@ -274,7 +275,7 @@ TEST(SimulationThread, RefusedCommandsSayWhyAndTheSceneRunsOn) {
   EXPECT_EQ(sim.latest()->geometry->scene_name, "flag");
   bool has_wind = false;
   for (const ParameterRange& r : sim.parameter_ranges())
-    has_wind |= r.name == "wind.x";
+    has_wind |= r.name == "wind.velocity.x";
   EXPECT_TRUE(has_wind);
 }
 
@@ -286,8 +287,8 @@ TEST(SimulationThread, DivergenceKeepsTheLastGoodStateAndResetRecovers) {
   long serial = sim.latest()->serial;
   sim.post(SetIntegrator{IntegratorKind::explicit_euler});
   sim.post(SetAdaptive{false});
-  sim.post(SetParameter{"dt", 0.1});
-  sim.post(SetParameter{"viscosity", 0});
+  sim.post(SetParameter{test::parameter("dt"), 0.1});
+  sim.post(SetParameter{test::parameter("viscosity"), 0});
   sim.wait_for_commands();
   EXPECT_TRUE(contains(sim.status().last_error, "explicit_euler gains energy"))
       << sim.status().last_error;
@@ -325,7 +326,7 @@ TEST(SimulationThread, DivergenceKeepsTheLastGoodStateAndResetRecovers) {
 // takes the message back.
 TEST(SimulationThread, AnUnstableChangeIsCaughtReportedAndTheClothHolds) {
   SimulationThread sim(test::asset_scene("hanging"), lockstep());
-  sim.post(SetParameter{"dt", 0.05});
+  sim.post(SetParameter{test::parameter("dt"), 0.05});
   sim.wait_for_commands();
   SimulationStatus s = sim.status();
   EXPECT_EQ(s.commands_refused, 0);
@@ -343,7 +344,7 @@ TEST(SimulationThread, AnUnstableChangeIsCaughtReportedAndTheClothHolds) {
   for (float p : f->position)
     EXPECT_LT(std::abs(p), 10.0f);  // the cloth is 1 m across and hangs at 1 m
 
-  sim.post(SetParameter{"dt", 1e-3});
+  sim.post(SetParameter{test::parameter("dt"), 1e-3});
   sim.wait_for_commands();
   s = sim.status();
   EXPECT_EQ(s.last_error, "");
@@ -372,7 +373,7 @@ TEST(SimulationThread, PauseStopsTimeSingleStepAdvancesDtResetRestores) {
   EXPECT_EQ(sim.status().steps, paused.steps + 1);
   EXPECT_EQ(sim.latest()->time, paused.time + 1e-3);
 
-  sim.post(SetParameter{"viscosity", 3});
+  sim.post(SetParameter{test::parameter("viscosity"), 3});
   sim.post(SetPinned{0, false});
   sim.post(Reset{});
   sim.wait_for_commands();
@@ -444,8 +445,9 @@ TEST(SimulationThread, StatusDescribesTheRun) {
   EXPECT_LE(s.step_cap, 0.01);
   EXPECT_EQ(s.material_inputs.size(), 3u);
   EXPECT_FALSE(s.wind.has_value());
-  sim.post(SetParameter{"input.mass", 0.5});
-  sim.post(SetParameter{"input.mass", 99});
+  const ParameterId mass = test::parameter(test::asset_scene("hanging_fuzzy"), "input.mass");
+  sim.post(SetParameter{mass, 0.5});
+  sim.post(SetParameter{mass, 99});
   sim.wait_for_commands();
   s = sim.status();
   EXPECT_EQ(s.commands_refused, 1);

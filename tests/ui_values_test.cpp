@@ -8,6 +8,20 @@
 namespace neurocloth {
 namespace {
 
+// The names of a scene with one linguistic input and a wind module.
+ParameterNames names() {
+  ParameterNames n;
+  n.inputs = {"mass"};
+  n.modules = {"plane", "wind"};
+  return n;
+}
+
+ParameterId id(const std::string& text) {
+  const auto parsed = parse_parameter(text, names());
+  EXPECT_TRUE(parsed.has_value()) << text;
+  return parsed.value_or(ParameterId{});
+}
+
 SimulationStatus status_at(double time, double viscosity) {
   SimulationStatus s;
   s.scene_path = "scene.json";
@@ -33,7 +47,7 @@ TEST(UiValues, TakesEverythingFromTheFirstStatus) {
 TEST(UiValues, AnEditIsNotPulledBackByALaggingStatus) {
   UiValues v;
   v.follow(status_at(0, 0.8));
-  ASSERT_TRUE(v.assign("viscosity", 0.5));
+  ASSERT_TRUE(v.assign(id("viscosity"), names(), 0.5));
   v.follow(status_at(0.1, 0.8));  // the command has not been applied yet
   EXPECT_EQ(v.viscosity, 0.5);
 }
@@ -41,36 +55,38 @@ TEST(UiValues, AnEditIsNotPulledBackByALaggingStatus) {
 TEST(UiValues, ResetOrANewSceneStartsOver) {
   UiValues v;
   v.follow(status_at(1.0, 0.8));
-  v.assign("viscosity", 0.5);
+  v.assign(id("viscosity"), names(), 0.5);
   v.follow(status_at(0.0, 0.8));  // time went back: a reset
   EXPECT_EQ(v.viscosity, 0.8);
-  v.assign("viscosity", 0.5);
+  v.assign(id("viscosity"), names(), 0.5);
   SimulationStatus other = status_at(0.5, 0.3);
   other.scene_path = "other.json";
   v.follow(other);
   EXPECT_EQ(v.viscosity, 0.3);
 }
 
-TEST(UiValues, NamesAreTheSetParameterNames) {
+TEST(UiValues, EveryParameterOfTheSceneHasAField) {
   UiValues v;
   v.follow(status_at(0, 0.8));
-  for (const char* name :
-       {"viscosity", "friction", "dt", "gravity.x", "gravity.z", "wind.y", "input.mass"})
-    EXPECT_TRUE(v.assign(name, 0.25)) << name;
+  for (const ParameterId& p : all_parameters(names()))
+    EXPECT_TRUE(v.assign(p, names(), 0.25)) << to_string(p, names());
   EXPECT_EQ(v.inputs[0].second, 0.25);
-  EXPECT_FALSE(v.assign("gravity.w", 1));
-  EXPECT_FALSE(v.assign("input.colour", 1));
-  EXPECT_FALSE(v.assign("mass", 1));
+  EXPECT_EQ(v.wind[1], 0.25);
+  EXPECT_FALSE(v.assign(ParameterId::gravity(3), names(), 1));
+  EXPECT_FALSE(v.assign(ParameterId::input(1), names(), 1)) << "no second input";
+  EXPECT_FALSE(v.assign(ParameterId::module(0, ModuleParameter::velocity, 0), names(), 1))
+      << "the plane has no velocity";
 }
 
-TEST(UiValues, StatusValueReadsTheSameNames) {
+TEST(UiValues, StatusValueReadsTheSameParameters) {
   SimulationStatus s = status_at(0, 0.8);
   s.gravity = Vec3(0, -9.81, 0);
-  EXPECT_EQ(status_value(s, "viscosity"), 0.8);
-  EXPECT_EQ(status_value(s, "gravity.y"), -9.81);
-  EXPECT_EQ(status_value(s, "input.mass"), 0.2);
-  EXPECT_FALSE(status_value(s, "wind.x")) << "no wind module";
-  EXPECT_FALSE(status_value(s, "nonsense"));
+  EXPECT_EQ(status_value(s, id("viscosity"), names()), 0.8);
+  EXPECT_EQ(status_value(s, id("gravity.y"), names()), -9.81);
+  EXPECT_EQ(status_value(s, id("input.mass"), names()), 0.2);
+  EXPECT_FALSE(status_value(s, id("wind.velocity.x"), names())) << "no wind in the status";
+  s.wind = Vec3(1, 2, 3);
+  EXPECT_EQ(status_value(s, id("wind.velocity.z"), names()), 3);
 }
 
 }  // namespace

@@ -39,9 +39,11 @@ json random_soak_script(std::mt19937_64& rng, double seconds, const SoakFiles& f
   static const std::vector<std::string> kKeys = {"space", "n", "f", "r",     "p", "F12",
                                                  "tab",   "1", "z", "enter", "F3"};
   static const std::vector<std::string> kNames = {
-      "viscosity",        "friction",    "dt",       "gravity.x", "gravity.y",
-      "gravity.z",        "wind.x",      "wind.y",   "wind.z",    "input.mass",
-      "input.elasticity", "input.force", "accuracy", "no.such",   "input.no_such"};
+      "viscosity",       "friction",         "dt",
+      "gravity.x",       "gravity.y",        "gravity.z",
+      "wind.velocity.x", "wind.velocity.y",  "wind.velocity.z",
+      "input.mass",      "input.elasticity", "input.force",
+      "accuracy",        "no.such",          "input.no_such"};
   std::uniform_real_distribution<double> u(0, 1);
   std::exponential_distribution<double> gap(1 / 0.08);  // 12 events a second on average
   int width = 1280, height = 720, shots = 0;

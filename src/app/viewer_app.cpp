@@ -227,7 +227,7 @@ int ViewerApp::finish() {
   const SimulationStatus status = sim_.status();
   note_errors(elapsed_, status);
   try {
-    report_.write(*options_.report, status, stats_);
+    report_.write(*options_.report, status, stats_, scene_info_.names());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "neurocloth: %s\n", e.what());
     return kViewerInputError;

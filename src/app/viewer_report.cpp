@@ -99,12 +99,12 @@ void ViewerReport::error(double t, const std::string& message) {
 }
 
 void ViewerReport::write(const std::string& path, const SimulationStatus& status,
-                         const FrameStats& stats) const {
+                         const FrameStats& stats, const ParameterNames& names) const {
   json sets = sets_;
   // What the simulation shows for each parameter asked for, at the end.
   for (json& set : sets)
-    if (const auto v = status_value(status, set["name"].get<std::string>()))
-      set["status_value"] = *v;
+    if (const auto id = parse_parameter(set["name"].get<std::string>(), names))
+      if (const auto v = status_value(status, *id, names)) set["status_value"] = *v;
   const json report = {{"picks", picks_},
                        {"drags", drags_},
                        {"pins", pins_},

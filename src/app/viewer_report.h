@@ -26,9 +26,10 @@ class ViewerReport {
   void screenshot(const std::string& path, int width, int height);
   void error(double t, const std::string& message);
 
-  // Writes the report with the final status; throws std::runtime_error naming `path`.
-  void write(const std::string& path, const SimulationStatus& status,
-             const FrameStats& stats) const;
+  // Writes the report with the final status (each set's name read against
+  // `names`, the running scene's); throws std::runtime_error naming `path`.
+  void write(const std::string& path, const SimulationStatus& status, const FrameStats& stats,
+             const ParameterNames& names = {}) const;
 
  private:
   nlohmann::json picks_ = nlohmann::json::array(), drags_ = nlohmann::json::array(),

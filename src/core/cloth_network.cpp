@@ -2,19 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "reciprocal_sqrt.h"
 
 namespace neurocloth {
 
 ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& material,
-                                 const SpringFunction& function) {
+                                 const SpringFunction& function, std::vector<double> mass_share) {
   ClothNetwork net;
   const std::size_t n = topology.rest_positions.size();
   net.masses.inverse_mass.assign(n, 0.0);
   net.masses.friction.assign(n, 0.0);
   net.masses.free.assign(n, 1.0);
-  net.mass_share.assign(n, 1.0);
+  if (mass_share.empty())
+    net.mass_share.assign(n, 1.0);
+  else if (mass_share.size() == n)
+    net.mass_share = std::move(mass_share);
+  else
+    throw std::invalid_argument("ClothNetwork::build: one mass share per node, or none");
 
   SpringLayer& L = net.springs;
   L.function = function;

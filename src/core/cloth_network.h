@@ -65,9 +65,11 @@ class ClothNetwork {
   std::vector<std::shared_ptr<const ForceModule>> force_modules;
 
   // Builds the layers from a topology: one spring per SpringSpec (rest length from
-  // the rest positions), the material's constants as initial weights.
+  // the rest positions), the material's constants as initial weights, each
+  // node weighing mass_share (one per node; empty: 1 each) node masses.
   static ClothNetwork build(const ClothTopology& topology, const Material& material,
-                            const SpringFunction& function = {});
+                            const SpringFunction& function = {},
+                            std::vector<double> mass_share = {});
 
   std::size_t node_count() const { return masses.size(); }
   std::size_t spring_count() const { return springs.size(); }

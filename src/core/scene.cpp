@@ -166,14 +166,14 @@ Material read_material(const JsonFields& in, const json& root,
     } else {
       lm = read_linguistic_material(in, m, field);
     }
-    const DerivedMaterial d =
-        FuzzyMaterial::load(lm.rules_path).derive(lm.inputs, lm.source, lm.inputs_field);
+    auto rules = std::make_shared<const FuzzyMaterial>(FuzzyMaterial::load(lm.rules_path));
+    const DerivedMaterial d = rules->derive(lm.inputs, lm.source, lm.inputs_field);
     // A rule base may define its outputs over any range: what it gives must
     // still be a material.
     if (const auto why = material_outside_limits(d.material))
       in.fail(in.has(m, "preset") ? field + ".preset" : field + ".inputs",
               "the rule base " + lm.rules_path + " gives " + *why);
-    fuzzy = Scene::FuzzySource{lm.rules_path, lm.inputs, d.report.notes};
+    fuzzy = Scene::FuzzySource{lm.rules_path, std::move(rules), lm.inputs, d.report.notes};
     return d.material;
   }
   in.allow_only(
@@ -307,18 +307,17 @@ Scene resized_grid(const Scene& scene, int n) {
 }
 
 ClothNetwork Scene::build_network() const {
-  ClothNetwork net = ClothNetwork::build(topology, material, spring_function);
   // A rule base's node_mass is the mass of kReferenceNodeArea of cloth: each
   // node carries its lumped share, so the material weighs the same at any
   // resolution (explicit materials give kg per node and are left as written).
+  std::vector<double> share;
   if (fuzzy_material) {
     const std::vector<double> area = lumped_node_areas(topology);
-    if (std::all_of(area.begin(), area.end(), [](double a) { return a > 0; })) {
-      for (std::size_t i = 0; i < area.size(); ++i)
-        net.mass_share[i] = area[i] / FuzzyMaterial::kReferenceNodeArea;
-      net.apply_material(material);
-    }
+    if (std::all_of(area.begin(), area.end(), [](double a) { return a > 0; }))
+      for (double a : area)
+        share.push_back(a / FuzzyMaterial::kReferenceNodeArea);
   }
+  ClothNetwork net = ClothNetwork::build(topology, material, spring_function, std::move(share));
   net.gravity = gravity;
   for (int p : pins)
     net.set_pinned(p, true);

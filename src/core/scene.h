@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <map>
+#include <memory>
 #include <optional>
 
 #include "asset_paths.h"
@@ -17,6 +18,8 @@
 
 namespace neurocloth {
 
+class FuzzyMaterial;
+
 struct Scene {
   std::string path;  // the file it came from ("" when parsed from text)
   std::string name;
@@ -25,9 +28,12 @@ struct Scene {
   std::vector<int> pins;         // node indices
   Material material;
   // Set when the material came from a rule base ({"rules", "inputs"} or
-  // {"preset"}): what to re-derive from when an input changes.
+  // {"preset"}): what to re-derive from when an input changes. The rule base
+  // is read once, with the scene, and shared: it never changes, and a copy of
+  // the scene (the viewer's, a reset's) need not read the file again.
   struct FuzzySource {
     std::string rules_path;
+    std::shared_ptr<const FuzzyMaterial> rules;
     std::map<std::string, double> inputs;
     std::vector<std::string> notes;  // clamped inputs, defaulted outputs
   };

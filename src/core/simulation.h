@@ -25,6 +25,7 @@
 #include "divergence_monitor.h"
 #include "integrator.h"
 #include "material.h"
+#include "parameter_id.h"
 #include "solver_settings.h"
 #include "weight_ramp.h"
 
@@ -84,10 +85,10 @@ class Simulation {
   const ClothNetwork& network() const { return net_; }
   // For parameter changes between steps; drops cached forces and step bounds.
   ClothNetwork& mutable_network();
-  // A live change of force module `index`'s parameter `name` (SceneModule::
+  // A live change of force module `index`'s parameter `id` (SceneModule::
   // set_parameter): the module is replaced by a changed copy, so copies of
   // this simulation keep theirs. False when the module has no such parameter.
-  bool set_module_parameter(std::size_t index, const std::string& name, double value);
+  bool set_module_parameter(std::size_t index, const ParameterId& id, double value);
   void set_external_force(std::size_t node, const Vec3& force);
   // External forces and the clock the next step's force evaluations read.
   const ForceInputs& force_inputs() const { return inputs_; }

@@ -13,11 +13,6 @@ namespace neurocloth {
 
 namespace {
 
-std::optional<FuzzyMaterial> load_rules(const Scene& scene) {
-  if (!scene.fuzzy_material) return std::nullopt;
-  return FuzzyMaterial::load(scene.fuzzy_material->rules_path);
-}
-
 std::string number(double v) {
   std::ostringstream os;
   os << v;
@@ -28,10 +23,12 @@ bool finite(const Vec3& v) {
   return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
 }
 
-int axis_of(const std::string& name, const std::string& prefix) {
-  if (name.size() != prefix.size() + 1 || name.compare(0, prefix.size(), prefix) != 0) return -1;
-  const char c = name.back();
-  return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1;
+// The first wind module's declaration index, or -1: the one whose mean wind
+// the status reports.
+int first_wind(const ParameterNames& names) {
+  for (std::size_t m = 0; m < names.modules.size(); ++m)
+    if (names.modules[m] == "wind") return static_cast<int>(m);
+  return -1;
 }
 
 // What the network uses for a per-spring or per-node weight: the value when all
@@ -68,16 +65,33 @@ Simulation live_simulation(Scene scene) {
 struct LiveScene::Run {
   Scene scene;
   Simulation sim;
-  std::optional<FuzzyMaterial> rules;
+  ParameterNames names;
   std::vector<ParameterRange> ranges;
   std::shared_ptr<const SceneGeometry> geometry;
 
   explicit Run(Scene s)
       : scene(std::move(s)),
         sim(live_simulation(scene)),
-        rules(load_rules(scene)),
-        ranges(parameter_ranges(scene, rules ? &*rules : nullptr)),
+        names(parameter_names(scene)),
+        ranges(parameter_ranges(scene)),
         geometry(make_geometry(scene)) {}
+
+  const FuzzyMaterial* rules() const {
+    return scene.fuzzy_material ? scene.fuzzy_material->rules.get() : nullptr;
+  }
+
+  // The module the scene declared `index`-th (a force module: only those have
+  // live parameters), found as the same occurrence of its type among the
+  // network's force modules, which keep the declaration order.
+  // Its position in the network's force modules, or -1.
+  int force_module(int index) const {
+    const std::string& type = names.modules[index];
+    auto occurrence = std::count(names.modules.begin(), names.modules.begin() + index, type);
+    const auto& modules = sim.network().force_modules;
+    for (std::size_t k = 0; k < modules.size(); ++k)
+      if (modules[k]->type() == type && occurrence-- == 0) return static_cast<int>(k);
+    return -1;
+  }
 };
 
 LiveScene::LiveScene(Scene scene, bool paused) : paused_(paused) {
@@ -97,6 +111,9 @@ const Scene& LiveScene::scene() const {
 }
 const std::vector<ParameterRange>& LiveScene::ranges() const {
   return run_->ranges;
+}
+const ParameterNames& LiveScene::names() const {
+  return run_->names;
 }
 const std::shared_ptr<const SceneGeometry>& LiveScene::geometry() const {
   return run_->geometry;
@@ -131,59 +148,72 @@ std::string LiveScene::apply(const SimCommand& command) {
 }
 
 Material LiveScene::target_material(const std::map<std::string, double>& inputs) const {
-  Material m = run_->rules ? run_->rules->derive(inputs).material : run_->scene.material;
+  const FuzzyMaterial* rules = run_->rules();
+  Material m = rules ? rules->derive(inputs).material : run_->scene.material;
   if (viscosity_) m.viscosity = *viscosity_;
   if (friction_) m.friction = *friction_;
   return m;
 }
 
 std::string LiveScene::on(const SetParameter& c) {
-  const ParameterRange* r = find_range(run_->ranges, c.name);
+  const ParameterRange* r = find_range(run_->ranges, c.id);
+  const std::string name = to_string(c.id, run_->names);
   if (!r) {
     std::string known;
     for (const ParameterRange& p : run_->ranges)
       known += (known.empty() ? "" : ", ") + p.name;
-    return "SetParameter: unknown parameter '" + c.name + "' (this scene has: " + known + ")";
+    return "SetParameter: unknown parameter '" + name + "' (this scene has: " + known + ")";
   }
   if (!(c.value >= r->min && c.value <= r->max))  // NaN fails too
-    return "SetParameter: " + c.name + " = " + number(c.value) + " is outside its range " +
+    return "SetParameter: " + name + " = " + number(c.value) + " is outside its range " +
            describe_range(*r);
-  set_parameter(c.name, c.value);
+  set_parameter(c.id, c.value);
   return {};
 }
 
-// `name` and `value` are checked against the ranges already.
-void LiveScene::set_parameter(const std::string& name, double value) {
+// `id` and `value` are checked against the ranges already.
+void LiveScene::set_parameter(const ParameterId& id, double value) {
   Simulation& sim = run_->sim;
-  if (name == "viscosity" || name == "friction") {
-    ClothNetwork& net = sim.mutable_network();
-    if (name == "viscosity") {
-      viscosity_ = value;
-      std::fill(net.springs.damping.begin(), net.springs.damping.end(), value);
-    } else {
-      friction_ = value;
-      std::fill(net.masses.friction.begin(), net.masses.friction.end(), value);
+  using Kind = ParameterId::Kind;
+  switch (id.kind) {
+    case Kind::viscosity:
+    case Kind::friction: {
+      ClothNetwork& net = sim.mutable_network();
+      if (id.kind == Kind::viscosity) {
+        viscosity_ = value;
+        std::fill(net.springs.damping.begin(), net.springs.damping.end(), value);
+      } else {
+        friction_ = value;
+        std::fill(net.masses.friction.begin(), net.masses.friction.end(), value);
+      }
+      // A material ramp in progress would write its own value back: aim it at the new one.
+      if (sim.ramping()) sim.ramp_to_material(target_material());
+      break;
     }
-    // A material ramp in progress would write its own value back: aim it at the new one.
-    if (sim.ramping()) sim.ramp_to_material(target_material());
-  } else if (name == "dt") {
-    SolverSettings s = sim.settings();
-    s.dt = value;
-    sim.set_solver_settings(s);
-  } else if (const int g = axis_of(name, "gravity."); g >= 0) {
-    sim.mutable_network().gravity[g] = value;
-    sim.rebase_divergence_check();  // the energy budget was for the old gravity
-  } else if (const int w = axis_of(name, "wind."); w >= 0) {
-    const std::string key = std::string("velocity.") + name.back();
-    for (std::size_t k = 0; k < sim.network().force_modules.size(); ++k)
-      sim.set_module_parameter(k, key, value);
-    (*wind_)[w] = value;
-    sim.rebase_divergence_check();  // and for the old wind
-  } else if (name.compare(0, 6, "input.") == 0) {
-    std::map<std::string, double> inputs = inputs_;
-    inputs[name.substr(6)] = value;
-    sim.ramp_to_material(target_material(inputs));  // no jolt: the weights move over 64 steps
-    inputs_ = std::move(inputs);                    // only once the ramp took it
+    case Kind::dt: {
+      SolverSettings s = sim.settings();
+      s.dt = value;
+      sim.set_solver_settings(s);
+      break;
+    }
+    case Kind::gravity:
+      sim.mutable_network().gravity[id.axis] = value;
+      sim.rebase_divergence_check();  // the energy budget was for the old gravity
+      break;
+    case Kind::module:
+      if (const int k = run_->force_module(id.index); k >= 0)
+        sim.set_module_parameter(static_cast<std::size_t>(k), id, value);
+      if (id.index == first_wind(run_->names) && id.parameter == ModuleParameter::velocity)
+        (*wind_)[id.axis] = value;
+      sim.rebase_divergence_check();  // and for the old forces
+      break;
+    case Kind::input: {
+      std::map<std::string, double> inputs = inputs_;
+      inputs[run_->names.inputs[id.index]] = value;
+      sim.ramp_to_material(target_material(inputs));  // no jolt: the weights move over 64 steps
+      inputs_ = std::move(inputs);                    // only once the ramp took it
+      break;
+    }
   }
 }
 
@@ -207,7 +237,7 @@ std::string LiveScene::on(const SetAdaptive& c) {
 }
 
 std::string LiveScene::on(const SetSolver& c) {
-  if (const ParameterRange* r = find_range(run_->ranges, "dt"))
+  if (const ParameterRange* r = find_range(run_->ranges, ParameterId::of(ParameterId::Kind::dt)))
     if (!(c.dt >= r->min && c.dt <= r->max))  // NaN fails too
       return "SetSolver: dt = " + number(c.dt) + " is outside its range " + describe_range(*r);
   SolverSettings s = run_->sim.settings();  // keeps the live run's budget and substep guard
@@ -325,11 +355,13 @@ std::string LiveScene::on(const LoadScene& c) {
 // in its ranges (the thread never lets an input be clamped silently).
 std::string LiveScene::on(const LoadRules& c) {
   Scene& scene = run_->scene;
-  if (!run_->rules)
+  if (!run_->rules())
     return "LoadRules: scene '" + scene.name +
            "' gives its material as numbers; only a scene whose material is a rule base can "
            "take new rules";
-  FuzzyMaterial rules = FuzzyMaterial::load(c.path);
+  const std::shared_ptr<const FuzzyMaterial> given =
+      c.rules ? c.rules : std::make_shared<const FuzzyMaterial>(FuzzyMaterial::load(c.path));
+  const FuzzyMaterial& rules = *given;
   for (const fuzzy::LinguisticVariable& v : rules.system().inputs) {
     const auto it = inputs_.find(v.name);
     if (it != inputs_.end() && !(it->second >= v.min && it->second <= v.max))
@@ -344,9 +376,9 @@ std::string LiveScene::on(const LoadRules& c) {
       throw InputError(c.path, "", "the rule base gives " + *why);
   scene.material = initial.material;
   scene.fuzzy_material->rules_path = c.path;
+  scene.fuzzy_material->rules = given;
   scene.fuzzy_material->notes = initial.report.notes;
-  run_->rules = std::move(rules);
-  run_->ranges = parameter_ranges(scene, &*run_->rules);
+  run_->ranges = parameter_ranges(scene);
   Material target = now.material;
   if (viscosity_) target.viscosity = *viscosity_;
   if (friction_) target.friction = *friction_;

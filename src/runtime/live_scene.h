@@ -16,16 +16,12 @@
 
 namespace neurocloth {
 
-// The ranges for `scene` with its rule base already loaded (nullptr: none).
-std::vector<ParameterRange> parameter_ranges(const Scene& scene, const FuzzyMaterial* rules);
-const ParameterRange* find_range(const std::vector<ParameterRange>& ranges,
-                                 const std::string& name);
 // "[0, 100] N s/m", for messages.
 std::string describe_range(const ParameterRange& range);
 
 class LiveScene {
  public:
-  // Throws InputError when the scene's rule base cannot be read.
+  // The scene's rule base is the one it was loaded with (never read again).
   explicit LiveScene(Scene scene, bool paused = false);
   ~LiveScene();
   LiveScene(const LiveScene&) = delete;
@@ -42,6 +38,8 @@ class LiveScene {
   // Increases whenever the run restarts (Reset, LoadScene): time went back.
   long generation() const { return generation_; }
   const std::vector<ParameterRange>& ranges() const;
+  // What input and module ids index in the running scene.
+  const ParameterNames& names() const;
   const std::shared_ptr<const SceneGeometry>& geometry() const;
   const std::vector<FrameSnapshot::AppliedForce>& forces() const { return forces_; }
 
@@ -73,7 +71,7 @@ class LiveScene {
   std::string on(const LoadScene& c);
   std::string on(const LoadRules& c);
 
-  void set_parameter(const std::string& name, double value);
+  void set_parameter(const ParameterId& id, double value);
   // "" when `node` is a node of the cloth, else why not.
   std::string check_node(const char* command, int node) const;
   // The material the network should settle on: the rule base's for `inputs`

@@ -2,45 +2,54 @@
 // wide enough for any experiment the viewer invites, narrow enough that a typo
 // (a viscosity of 5000, a dt of 2 s) is refused rather than run into a divergence.
 #include <sstream>
-#include <type_traits>
 
 #include "live_scene.h"
 
 namespace neurocloth {
 
-namespace {
-bool has_wind(const Scene& scene) {
-  for (const ModuleDeclaration& m : scene.modules)
-    if (std::holds_alternative<WindSpec>(m.spec)) return true;
-  return false;
-}
-}  // namespace
-
-std::vector<ParameterRange> parameter_ranges(const Scene& scene, const FuzzyMaterial* rules) {
-  std::vector<ParameterRange> r = {
-      {"viscosity", 0, 100, "N s/m"}, {"friction", 0, 5, ""}, {"dt", 1e-5, 0.1, "s"}};
-  for (const char* axis : {"x", "y", "z"})
-    r.push_back({std::string("gravity.") + axis, -100, 100, "m/s^2"});
-  if (has_wind(scene))
-    for (const char* axis : {"x", "y", "z"})
-      r.push_back({std::string("wind.") + axis, -50, 50, "m/s"});
-  // A linguistic input may take any value its rule base defines terms over.
-  if (rules)
-    for (const fuzzy::LinguisticVariable& v : rules->system().inputs)
-      r.push_back({"input." + v.name, v.min, v.max, ""});
+std::vector<ParameterRange> parameter_ranges(const Scene& scene) {
+  const ParameterNames names = parameter_names(scene);
+  const FuzzyMaterial* rules = scene.fuzzy_material ? scene.fuzzy_material->rules.get() : nullptr;
+  std::vector<ParameterRange> r;
+  for (const ParameterId& id : all_parameters(names)) {
+    ParameterRange range{id, to_string(id, names), 0, 0, ""};
+    switch (id.kind) {
+      case ParameterId::Kind::viscosity:
+        range = {id, range.name, 0, 100, "N s/m"};
+        break;
+      case ParameterId::Kind::friction:
+        range = {id, range.name, 0, 5, ""};
+        break;
+      case ParameterId::Kind::dt:
+        range = {id, range.name, 1e-5, 0.1, "s"};
+        break;
+      case ParameterId::Kind::gravity:
+        range = {id, range.name, -100, 100, "m/s^2"};
+        break;
+      case ParameterId::Kind::input: {
+        // A linguistic input may take any value its rule base defines terms over.
+        const int i = rules ? rules->system().input_index(names.inputs[id.index]) : -1;
+        if (i < 0) continue;
+        const fuzzy::LinguisticVariable& v = rules->system().inputs[i];
+        range = {id, range.name, v.min, v.max, ""};
+        break;
+      }
+      case ParameterId::Kind::module:
+        switch (id.parameter) {
+          case ModuleParameter::velocity:
+            range = {id, range.name, -50, 50, "m/s"};
+            break;
+        }
+        break;
+    }
+    r.push_back(std::move(range));
+  }
   return r;
 }
 
-std::vector<ParameterRange> parameter_ranges(const Scene& scene) {
-  if (!scene.fuzzy_material) return parameter_ranges(scene, nullptr);
-  const FuzzyMaterial rules = FuzzyMaterial::load(scene.fuzzy_material->rules_path);
-  return parameter_ranges(scene, &rules);
-}
-
-const ParameterRange* find_range(const std::vector<ParameterRange>& ranges,
-                                 const std::string& name) {
+const ParameterRange* find_range(const std::vector<ParameterRange>& ranges, const ParameterId& id) {
   for (const ParameterRange& r : ranges)
-    if (r.name == name) return &r;
+    if (r.id == id) return &r;
   return nullptr;
 }
 

@@ -2,20 +2,22 @@
 // What the UI (or a script, or a test) may ask of the simulation thread. The
 // UI never writes simulation state: it posts one of these and the simulation
 // thread applies it between steps.
+#include <memory>
 #include <string>
 #include <variant>
 
+#include "fuzzy_material.h"
 #include "integrator.h"
+#include "parameter_id.h"
 #include "vec3.h"
 
 namespace neurocloth {
 
-// A named number, checked against parameter_ranges(): "viscosity" (N s/m, every
-// spring's damping), "friction" (every node's Coulomb coefficient), "dt" (s),
-// "gravity.x|y|z" (m/s^2), "wind.x|y|z" (m/s, scenes with wind), and
-// "input.NAME" (a linguistic input of the scene's fuzzy material, ramped in).
+// One number (parameter_id.h says which there are), checked against
+// parameter_ranges(). A linguistic input is ramped in; the others take effect
+// at the next step.
 struct SetParameter {
-  std::string name;
+  ParameterId id;  // parsed against the running scene's ParameterNames
   double value;
 };
 struct SetIntegrator {
@@ -64,6 +66,9 @@ struct LoadScene {
 };
 struct LoadRules {
   std::string path;  // an FCL rule base for the current linguistic material
+  // The rule base read from `path` by whoever sends this (the UI reads it to
+  // show it): the thread takes it as it is. Null: the thread reads `path`.
+  std::shared_ptr<const FuzzyMaterial> rules = nullptr;
 };
 
 using SimCommand =

@@ -21,11 +21,14 @@ namespace neurocloth {
 // A parameter's valid range, for the UI (shown when a typed value is refused)
 // and for the thread's own check.
 struct ParameterRange {
-  std::string name;  // as in SetParameter
+  ParameterId id;    // as in SetParameter
+  std::string name;  // the id as text, for lists and messages
   double min, max;
   std::string unit;
 };
+// For the scene's own rule base (Scene::FuzzySource::rules: not read again).
 std::vector<ParameterRange> parameter_ranges(const Scene& scene);
+const ParameterRange* find_range(const std::vector<ParameterRange>& ranges, const ParameterId& id);
 
 struct SimulationStatus {
   std::string scene_name, scene_path;

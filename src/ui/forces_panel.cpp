@@ -2,21 +2,27 @@
 // force the mouse drag applies right now.
 #include <imgui.h>
 
+#include <algorithm>
+#include <string>
+
 #include "panels.h"
 #include "parameter_input.h"
 
 namespace neurocloth {
 
 void forces_panel(PanelContext& ctx) {
+  const char* const axes[] = {"x", "y", "z"};
   ImGui::TextDisabled("gravity, m/s^2");
-  parameter_field(ctx, "gravity x", "gravity.x");
-  parameter_field(ctx, "gravity y", "gravity.y");
-  parameter_field(ctx, "gravity z", "gravity.z");
-  if (ctx.values.has_wind) {
+  for (int k = 0; k < 3; ++k)
+    parameter_field(ctx, (std::string("gravity ") + axes[k]).c_str(), ParameterId::gravity(k));
+  const auto& modules = ctx.scene.names().modules;
+  const auto wind = std::find(modules.begin(), modules.end(), "wind");
+  if (ctx.values.has_wind && wind != modules.end()) {
     ImGui::TextDisabled("wind, m/s");
-    parameter_field(ctx, "wind x", "wind.x");
-    parameter_field(ctx, "wind y", "wind.y");
-    parameter_field(ctx, "wind z", "wind.z");
+    const int index = static_cast<int>(wind - modules.begin());
+    for (int k = 0; k < 3; ++k)
+      parameter_field(ctx, (std::string("wind ") + axes[k]).c_str(),
+                      ParameterId::module(index, ModuleParameter::velocity, k));
   } else {
     ImGui::TextDisabled("no wind module in this scene");
   }

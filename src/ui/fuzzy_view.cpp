@@ -2,12 +2,12 @@
 
 namespace neurocloth {
 
-FuzzyView::FuzzyView(const std::string& rules_path)
-    : rules_path_(rules_path), material_(FuzzyMaterial::load(rules_path)) {}
+FuzzyView::FuzzyView(std::string rules_path, std::shared_ptr<const FuzzyMaterial> rules)
+    : rules_path_(std::move(rules_path)), material_(std::move(rules)) {}
 
 const DerivedMaterial& FuzzyView::evaluate(
     const std::vector<std::pair<std::string, double>>& inputs) {
-  const fuzzy::FuzzySystem& system = material_.system();
+  const fuzzy::FuzzySystem& system = material_->system();
   std::vector<double> x(system.inputs.size());
   for (std::size_t i = 0; i < x.size(); ++i)
     x[i] = 0.5 * (system.inputs[i].min + system.inputs[i].max);
@@ -17,7 +17,7 @@ const DerivedMaterial& FuzzyView::evaluate(
     std::map<std::string, double> named;
     for (std::size_t i = 0; i < x.size(); ++i)
       named[system.inputs[i].name] = x[i];
-    evaluated_ = material_.derive(named);
+    evaluated_ = material_->derive(named);
     evaluated_inputs_ = x;
   }
   return evaluated_;
@@ -46,7 +46,7 @@ std::string hedged(const std::vector<fuzzy::Hedge>& hedges, bool negated, const 
 }  // namespace
 
 std::string FuzzyView::describe(const fuzzy::Condition& c) const {
-  const fuzzy::FuzzySystem& system = material_.system();
+  const fuzzy::FuzzySystem& system = material_->system();
   using Kind = fuzzy::Condition::Kind;
   if (c.kind == Kind::term) {
     const fuzzy::LinguisticVariable& v = system.inputs[c.variable];
@@ -63,7 +63,7 @@ std::string FuzzyView::describe(const fuzzy::Condition& c) const {
 }
 
 std::string FuzzyView::describe(const fuzzy::Consequent& c) const {
-  const fuzzy::LinguisticVariable& v = material_.system().outputs[c.variable];
+  const fuzzy::LinguisticVariable& v = material_->system().outputs[c.variable];
   return v.name + " IS " + hedged(c.hedges, c.negated, v.terms[c.term].name);
 }
 

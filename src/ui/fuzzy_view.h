@@ -4,6 +4,7 @@
 // its own inference when an input reaches it): each variable's membership
 // curves, each rule's firing strength and the resulting parameters.
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,11 +15,12 @@ namespace neurocloth {
 
 class FuzzyView {
  public:
-  // Throws InputError (file, line) when the rule base cannot be read or is no material.
-  explicit FuzzyView(const std::string& rules_path);
+  // `rules` was read from `rules_path` (a scene's, or one the user loads).
+  FuzzyView(std::string rules_path, std::shared_ptr<const FuzzyMaterial> rules);
 
   const std::string& rules_path() const { return rules_path_; }
-  const fuzzy::FuzzySystem& system() const { return material_.system(); }
+  const std::shared_ptr<const FuzzyMaterial>& rules() const { return material_; }
+  const fuzzy::FuzzySystem& system() const { return material_->system(); }
 
   // The material and the rules' activations for `inputs` (name, value). Inputs
   // the rule base has but the list lacks take the middle of their range, so a
@@ -33,7 +35,7 @@ class FuzzyView {
 
  private:
   std::string rules_path_;
-  FuzzyMaterial material_;
+  std::shared_ptr<const FuzzyMaterial> material_;
   // The last evaluation, reused while the inputs stay the same (every frame, mostly).
   std::vector<double> evaluated_inputs_;
   DerivedMaterial evaluated_;

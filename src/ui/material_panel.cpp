@@ -3,6 +3,7 @@
 // strength; the parameters that result; presets and loading a rule base.
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -70,12 +71,14 @@ void presets_and_rules(PanelContext& ctx) {
 
 void inputs(PanelContext& ctx, FuzzyView& view) {
   const fuzzy::FuzzySystem& system = view.system();
+  const std::vector<std::string>& names = ctx.scene.names().inputs;
   for (const fuzzy::LinguisticVariable& v : system.inputs) {
-    const std::string name = "input." + v.name;
-    double* value = ctx.values.field(name);
+    const auto known = std::find(names.begin(), names.end(), v.name);
+    const ParameterId id = ParameterId::input(static_cast<int>(known - names.begin()));
+    double* value = known == names.end() ? nullptr : ctx.values.field(id, ctx.scene.names());
     ImGui::PushID(v.name.c_str());
     if (value) {
-      parameter_slider(ctx, v.name.c_str(), name);
+      parameter_slider(ctx, v.name.c_str(), id);
       membership_plot(v, *value, ImVec2(ImGui::GetContentRegionAvail().x, kPlotHeight));
     } else {
       ImGui::TextDisabled("%s: not an input of the running material", v.name.c_str());

@@ -5,6 +5,7 @@ namespace neurocloth {
 SceneInfo::SceneInfo(const Scene& scene)
     : name_(scene.name),
       path_(scene.path),
+      names_(parameter_names(scene)),
       ranges_(parameter_ranges(scene)),
       material_(scene.material),
       solver_(scene.solver),
@@ -16,13 +17,12 @@ SceneInfo::SceneInfo(const Scene& scene)
   for (std::size_t i = 0; i < node_mass_.size(); ++i)
     node_mass_[i] = net.mass(i);
   mass_share_ = net.mass_share;
-  if (scene.fuzzy_material) fuzzy_.emplace(scene.fuzzy_material->rules_path);
+  if (scene.fuzzy_material && scene.fuzzy_material->rules)
+    fuzzy_.emplace(scene.fuzzy_material->rules_path, scene.fuzzy_material->rules);
 }
 
-const ParameterRange* SceneInfo::range(const std::string& name) const {
-  for (const ParameterRange& r : ranges_)
-    if (r.name == name) return &r;
-  return nullptr;
+const ParameterRange* SceneInfo::range(const ParameterId& id) const {
+  return find_range(ranges_, id);
 }
 
 double SceneInfo::node_mass(int node, const std::vector<std::pair<std::string, double>>& inputs) {

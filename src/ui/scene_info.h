@@ -17,7 +17,7 @@ namespace neurocloth {
 class SceneInfo {
  public:
   SceneInfo() = default;
-  // Throws InputError when the scene's rule base cannot be read.
+  // Shares the scene's rule base (read with the scene, not again).
   explicit SceneInfo(const Scene& scene);
 
   const std::string& name() const { return name_; }
@@ -26,7 +26,9 @@ class SceneInfo {
   const std::vector<ParameterRange>& ranges() const { return ranges_; }
   // The simulation thread's ranges for what runs now (they change with LoadRules).
   void set_ranges(std::vector<ParameterRange> ranges) { ranges_ = std::move(ranges); }
-  const ParameterRange* range(const std::string& name) const;
+  const ParameterRange* range(const ParameterId& id) const;
+  // What input and module ids index: text from the user is parsed against these.
+  const ParameterNames& names() const { return names_; }
   // kg: as the scene was loaded, or for a linguistic material, the node's share
   // of the cloth times the node mass the rule base derives from `inputs` (what
   // the simulation is ramping towards).
@@ -43,6 +45,7 @@ class SceneInfo {
 
  private:
   std::string name_, path_;
+  ParameterNames names_;
   std::vector<ParameterRange> ranges_;
   std::vector<double> node_mass_, mass_share_;
   Material material_;

@@ -25,9 +25,11 @@ void settings(PanelContext& ctx) {
     ImGui::EndCombo();
   }
   if (ImGui::Checkbox("adaptive (paper, Table 1)", &v.adaptive)) ctx.post(SetAdaptive{v.adaptive});
-  parameter_field(ctx, v.adaptive ? "refresh interval, s" : "time step, s", "dt");
-  parameter_field(ctx, "damping (viscosity), N s/m", "viscosity");
-  parameter_field(ctx, "friction", "friction");
+  using Kind = ParameterId::Kind;
+  parameter_field(ctx, v.adaptive ? "refresh interval, s" : "time step, s",
+                  ParameterId::of(Kind::dt));
+  parameter_field(ctx, "damping (viscosity), N s/m", ParameterId::of(Kind::viscosity));
+  parameter_field(ctx, "friction", ParameterId::of(Kind::friction));
 }
 
 // Instead of a step by hand: the cheapest measured setting within an accuracy.

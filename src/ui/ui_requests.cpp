@@ -26,19 +26,22 @@ std::string range_text(const ParameterRange& range) {
 }
 
 std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
-                              const std::string& name, double value) {
-  const ParameterRange* range = scene.range(name);
-  if (!range) {
-    std::string known;
-    for (const ParameterRange& r : scene.ranges())
-      known += (known.empty() ? "" : ", ") + r.name;
-    return "no parameter '" + name + "' in this scene (it has: " + known + ")";
-  }
+                              const ParameterId& id, double value) {
+  const ParameterRange* range = scene.range(id);
+  if (!range) return "no parameter '" + to_string(id, scene.names()) + "' in this scene";
   if (!std::isfinite(value) || value < range->min || value > range->max)
-    return name + " = " + number(value) + " refused: valid range " + range_text(*range);
-  values.assign(name, value);
-  post(SetParameter{name, value});
+    return range->name + " = " + number(value) + " refused: valid range " + range_text(*range);
+  values.assign(id, scene.names(), value);
+  post(SetParameter{id, value});
   return "";
+}
+
+std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                              const std::string& name, double value) {
+  std::string why;
+  const std::optional<ParameterId> id = parse_parameter(name, scene.names(), &why);
+  if (!id) return why;
+  return request_parameter(scene, values, post, *id, value);
 }
 
 std::string request_accuracy(const SceneInfo& scene, UiValues& values, const CommandSink& post,
@@ -77,14 +80,16 @@ std::string request_rules(SceneInfo& scene, const std::string& path, const Comma
   if (!scene.fuzzy())
     return "this scene's material is given as numbers; a rule base needs a linguistic "
            "material (\"material\": {\"rules\", \"inputs\"})";
-  // Read into a new view first: emplace would drop the current one before a failed read.
+  // Read before replacing the view: a failed read keeps the current one. The
+  // thread takes the rule base as read here rather than reading the file again.
+  std::shared_ptr<const FuzzyMaterial> rules;
   try {
-    FuzzyView view(path);
-    scene.fuzzy() = std::move(view);
+    rules = std::make_shared<const FuzzyMaterial>(FuzzyMaterial::load(path));
   } catch (const std::exception& e) {
     return e.what();
   }
-  post(LoadRules{path});
+  scene.fuzzy() = FuzzyView(path, rules);
+  post(LoadRules{path, rules});
   return "";
 }
 

@@ -10,9 +10,13 @@
 
 namespace neurocloth {
 
-// Posts SetParameter{name, value} and mirrors it in `values` when it is valid;
+// Posts SetParameter{id, value} and mirrors it in `values` when it is valid;
 // otherwise returns why not (e.g. "viscosity = 5 refused: valid range 0 .. 2 N s/m").
 // An empty string means it was posted.
+std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
+                              const ParameterId& id, double value);
+// The same for a name typed or scripted ("gravity.y", "input.mass"), parsed
+// against the scene's names first: an unknown one is refused, quoted.
 std::string request_parameter(const SceneInfo& scene, UiValues& values, const CommandSink& post,
                               const std::string& name, double value);
 

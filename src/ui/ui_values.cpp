@@ -7,13 +7,20 @@ namespace neurocloth {
 
 namespace {
 
-// "gravity.y" -> 1; -1 when `name` is not prefix + ".x|y|z".
-int axis_of(const std::string& name, const std::string& prefix) {
-  if (name.size() != prefix.size() + 2 || name.compare(0, prefix.size(), prefix) != 0 ||
-      name[prefix.size()] != '.')
-    return -1;
-  const char axis = name.back();
-  return axis >= 'x' && axis <= 'z' ? axis - 'x' : -1;
+// The status and the Forces panel show one wind: the scene's first wind module's.
+bool is_shown_wind(const ParameterId& id, const ParameterNames& names) {
+  if (id.kind != ParameterId::Kind::module || id.parameter != ModuleParameter::velocity)
+    return false;
+  const auto first = std::find(names.modules.begin(), names.modules.end(), "wind");
+  return first != names.modules.end() && id.index == first - names.modules.begin();
+}
+
+// The input `id` names, "" when it names none.
+std::string input_name(const ParameterId& id, const ParameterNames& names) {
+  if (id.kind != ParameterId::Kind::input || id.index < 0 ||
+      static_cast<std::size_t>(id.index) >= names.inputs.size())
+    return "";
+  return names.inputs[id.index];
 }
 
 int integrator_index(IntegratorKind kind) {
@@ -59,33 +66,54 @@ void UiValues::copy_from(const SimulationStatus& status) {
   if (scene_path[0] == '\0') copy_text(scene_path, status.scene_path);
 }
 
-double* UiValues::field(const std::string& name) {
-  if (name == "viscosity") return &viscosity;
-  if (name == "friction") return &friction;
-  if (name == "dt") return &dt;
-  if (const int k = axis_of(name, "gravity"); k >= 0) return &gravity[k];
-  if (const int k = axis_of(name, "wind"); k >= 0) return &wind[k];
-  if (name.rfind("input.", 0) == 0)
-    for (auto& [input, v] : inputs)
-      if (input == name.substr(6)) return &v;
+double* UiValues::field(const ParameterId& id, const ParameterNames& names) {
+  const bool axis = id.axis >= 0 && id.axis < 3;
+  switch (id.kind) {
+    case ParameterId::Kind::viscosity:
+      return &viscosity;
+    case ParameterId::Kind::friction:
+      return &friction;
+    case ParameterId::Kind::dt:
+      return &dt;
+    case ParameterId::Kind::gravity:
+      return axis ? &gravity[id.axis] : nullptr;
+    case ParameterId::Kind::module:
+      return axis && is_shown_wind(id, names) ? &wind[id.axis] : nullptr;
+    case ParameterId::Kind::input:
+      for (auto& [input, v] : inputs)
+        if (input == input_name(id, names)) return &v;
+      return nullptr;
+  }
   return nullptr;
 }
 
-bool UiValues::assign(const std::string& name, double value) {
-  double* f = field(name);
+bool UiValues::assign(const ParameterId& id, const ParameterNames& names, double value) {
+  double* f = field(id, names);
   if (f) *f = value;
   return f != nullptr;
 }
 
-std::optional<double> status_value(const SimulationStatus& status, const std::string& name) {
-  if (name == "viscosity") return status.viscosity;
-  if (name == "friction") return status.friction;
-  if (name == "dt") return status.dt;
-  if (const int k = axis_of(name, "gravity"); k >= 0) return status.gravity[k];
-  if (const int k = axis_of(name, "wind"); k >= 0 && status.wind) return (*status.wind)[k];
-  if (name.rfind("input.", 0) == 0)
-    for (const auto& [input, v] : status.material_inputs)
-      if (input == name.substr(6)) return v;
+std::optional<double> status_value(const SimulationStatus& status, const ParameterId& id,
+                                   const ParameterNames& names) {
+  const bool axis = id.axis >= 0 && id.axis < 3;
+  switch (id.kind) {
+    case ParameterId::Kind::viscosity:
+      return status.viscosity;
+    case ParameterId::Kind::friction:
+      return status.friction;
+    case ParameterId::Kind::dt:
+      return status.dt;
+    case ParameterId::Kind::gravity:
+      if (axis) return status.gravity[id.axis];
+      return std::nullopt;
+    case ParameterId::Kind::module:
+      if (axis && status.wind && is_shown_wind(id, names)) return (*status.wind)[id.axis];
+      return std::nullopt;
+    case ParameterId::Kind::input:
+      for (const auto& [input, v] : status.material_inputs)
+        if (input == input_name(id, names)) return v;
+      return std::nullopt;
+  }
   return std::nullopt;
 }
 

@@ -40,10 +40,10 @@ struct UiValues {
 
   // Copies every setting from `status` when the run started over since the last call.
   void follow(const SimulationStatus& status);
-  // Mirrors a value set by name ("viscosity", "gravity.y", "input.mass", ...);
-  // false when no field has that name.
-  bool assign(const std::string& name, double value);
-  double* field(const std::string& name);
+  // Mirrors a value set through `id` (input and module ids index `names`);
+  // false when no field shows it (only the first wind module's velocity has one).
+  bool assign(const ParameterId& id, const ParameterNames& names, double value);
+  double* field(const ParameterId& id, const ParameterNames& names);
 
  private:
   void copy_from(const SimulationStatus& status);
@@ -52,8 +52,9 @@ struct UiValues {
   bool followed_once_ = false;
 };
 
-// The value `name` has in `status` (the same names as SetParameter), if any.
-std::optional<double> status_value(const SimulationStatus& status, const std::string& name);
+// The value `id` has in `status`, if the status carries it.
+std::optional<double> status_value(const SimulationStatus& status, const ParameterId& id,
+                                   const ParameterNames& names);
 
 void copy_text(std::array<char, 512>& buffer, const std::string& text);
 

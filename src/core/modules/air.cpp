@@ -94,13 +94,10 @@ class Wind final : public ForceModule {
     return (a_.capacity() + b_.capacity() + c_.capacity()) * sizeof(std::int32_t);
   }
 
-  // "velocity.x|y|z": the mean wind, m/s.
-  bool set_parameter(const std::string& name, double value) override {
-    const int axis = name == "velocity.x"   ? 0
-                     : name == "velocity.y" ? 1
-                     : name == "velocity.z" ? 2
-                                            : -1;
-    if (axis < 0) return false;
+  // One axis of the mean wind, m/s.
+  bool set_parameter(const ParameterId& id, double value) override {
+    const int axis = id.axis;
+    if (id.parameter != ModuleParameter::velocity || axis < 0 || axis > 2) return false;
     base_[axis] = value;
     return true;
   }

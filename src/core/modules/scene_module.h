@@ -22,6 +22,7 @@
 
 #include "../cloth_state.h"
 #include "../force_inputs.h"
+#include "../parameter_id.h"
 
 namespace neurocloth {
 
@@ -61,10 +62,11 @@ class SceneModule {
   // Bytes of per-node or per-triangle data the module holds (for the test
   // that an undeclared module allocates nothing, and for the viewer).
   virtual std::size_t state_bytes() const { return 0; }
-  // A live change of one declared number between steps ("velocity.x" for wind),
-  // for the viewer's controls, made on a fresh clone (see above). False when the
-  // module has no such parameter; the caller checks the range.
-  virtual bool set_parameter(const std::string& /*name*/, double /*value*/) { return false; }
+  // A live change of one declared number between steps (for wind, one axis of
+  // its velocity): `id` names the module's parameter and axis (parameter_id.h).
+  // Made on a fresh clone (see above). False when the module has no such
+  // parameter; the caller checks the range.
+  virtual bool set_parameter(const ParameterId& /*id*/, double /*value*/) { return false; }
   // The scene's declaration, as JSON text, for reports and the viewer.
   std::string declaration;
 };
