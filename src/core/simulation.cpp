@@ -97,7 +97,7 @@ ClothNetwork& Simulation::mutable_network() {
   return net_;
 }
 
-bool Simulation::set_module_parameter(std::size_t index, const std::string& name, double value) {
+bool Simulation::set_module_parameter(std::size_t index, const ParameterId& id, double value) {
   if (index >= net_.force_modules.size()) throw std::out_of_range("no such force module");
   std::shared_ptr<ForceModule> changed = net_.force_modules[index]->clone();
   if (!changed->set_parameter(id, value)) return false;
