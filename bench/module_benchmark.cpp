@@ -1,15 +1,12 @@
 // Google Benchmark: what scene modules cost on top of the bare network. The
-// table drape's cloth resized to N x N is stepped (fixed steps, network
-// propagation) three ways: bare (no modules), with a declared plane that no
-// node ever reaches, and lying on the table (the box collider in contact with
-// the cloth's middle every step). Quote medians of
+// table drape's cloth resized to N x N is stepped by the one step benchmark's
+// rule (step_bench.h: fixed network steps) three ways: bare (no modules), with
+// a declared plane that no node ever reaches, and lying on the table (the box
+// collider in contact with the cloth's middle every step). Quote medians of
 //   --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
-
-#include "scene.h"
-#include "stability.h"
+#include "step_bench.h"
 
 namespace neurocloth {
 namespace {
@@ -17,7 +14,7 @@ namespace {
 enum Variant { bare = 0, unreached_plane = 1, on_table = 2 };
 
 Scene variant_scene(Variant v, int n) {
-  Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/table_drape.json"), n);
+  Scene scene = table_drape_cloth(n);
   const ModuleDeclaration table = scene.modules.at(0);  // the box
   scene.modules.clear();
   if (v == unreached_plane) {
@@ -32,24 +29,21 @@ Scene variant_scene(Variant v, int n) {
     for (Vec3& p : scene.topology.rest_positions)
       p.y() -= drop;
   }
-  scene.solver.adaptive = false;
   return scene;
 }
 
 void BM_Modules(benchmark::State& st) {
   const auto v = static_cast<Variant>(st.range(0));
   const int n = static_cast<int>(st.range(1));
-  Scene scene = variant_scene(v, n);
-  scene.solver.dt = 0.5 * stable_step_bound(scene.build_network(), 2.0);
-  Simulation sim = scene.make_simulation();
-  constexpr int kSteps = 16;  // a viewer frame's worth
+  StepBench bench(variant_scene(v, n), IntegratorKind::network);
+  long steps = 0;
   for (auto _ : st)
-    sim.advance(kSteps * scene.solver.dt);
-  if (sim.status() != RunStatus::ok) st.SkipWithError("diverged");
+    steps += bench.run(StepBench::kFrameSteps);
+  if (bench.simulation().status() != RunStatus::ok) st.SkipWithError("diverged");
   static const char* const names[] = {"bare", "unreached_plane", "on_table"};
   st.SetLabel(names[v]);
   st.counters["us_per_step"] = benchmark::Counter(
-      kSteps * st.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+      static_cast<double>(steps) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_Modules)

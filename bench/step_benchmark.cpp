@@ -1,56 +1,57 @@
-// Google Benchmark: one step of each integrator on the default scene's cloth
-// resized to N x N (the same cloth `neurocloth-cli bench` times). Run with
-// --benchmark_repetitions=9 --benchmark_report_aggregates_only=true and quote
-// the medians: this machine is shared and noisy.
+// Google Benchmark: one step of each integrator on the one step benchmark's
+// cloth (step_bench.h: the default scene's cloth resized to N x N, the cloth
+// and step rule `neurocloth-cli bench` times), and the same cloth read from an
+// OBJ file (the mesh path: its springs in stencil order, stencil_order.h).
+// Run with --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
+// and quote the medians: this machine is shared and noisy.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <vector>
 
-#include "scene.h"
-#include "stability.h"
+#include "step_bench.h"
 
 namespace neurocloth {
 namespace {
 
-Scene resized(int n) {
-  return resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), n);
+// Frames of the one rule until the benchmark has timed enough; per spring
+// update and per step, from the steps actually taken.
+void time_steps(benchmark::State& st, const Scene& scene, IntegratorKind kind) {
+  StepBench bench(scene, kind);
+  long steps = 0;
+  for (auto _ : st)
+    steps += bench.run(StepBench::kFrameSteps);
+  if (bench.simulation().status() != RunStatus::ok) st.SkipWithError("diverged");
+  const auto springs = static_cast<double>(bench.springs());
+  st.SetLabel(to_string(kind));
+  st.counters["springs"] = springs;
+  st.counters["ns_per_spring"] =
+      benchmark::Counter(springs * static_cast<double>(steps) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  st.counters["us_per_step"] = benchmark::Counter(
+      static_cast<double>(steps) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_Step(benchmark::State& st) {
-  const auto kind = static_cast<IntegratorKind>(st.range(0));
-  const int n = static_cast<int>(st.range(1));
-  Scene scene = resized(n);
-  scene.solver.integrator = kind;
-  const ClothNetwork net = scene.build_network();
-  // Forward Euler gains energy on every undamped mode; a much smaller step keeps
-  // it alive long enough to be timed (the cost of a step does not depend on dt).
-  const double fraction = kind == IntegratorKind::explicit_euler ? 0.005 : 0.5;
-  scene.solver.dt = std::min(scene.solver.dt, fraction * stable_step_bound(net, 2.0));
-  Simulation sim = scene.make_simulation();
-  // 16 steps an iteration, like a viewer frame: the end-of-advance checks weigh
-  // what they weigh in use.
-  constexpr int kSteps = 16;
-  for (auto _ : st)
-    sim.advance(kSteps * scene.solver.dt);
-  if (sim.status() != RunStatus::ok) st.SkipWithError("diverged");
-  st.SetLabel(to_string(kind));
-  st.counters["springs"] = static_cast<double>(net.spring_count());
-  st.counters["ns_per_spring"] =
-      benchmark::Counter(static_cast<double>(net.spring_count()) * kSteps * st.iterations() * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  st.counters["us_per_step"] = benchmark::Counter(
-      kSteps * st.iterations() * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  time_steps(st, bare_cloth(static_cast<int>(st.range(1))),
+             static_cast<IntegratorKind>(st.range(0)));
 }
+
+// The same N x N cloth through the mesh path, network propagation: what a
+// mesh costs per spring beside BM_Step/0/N (a mesh has other springs: edges,
+// one diagonal a quad, bends across edges; no shear).
+void BM_MeshStep(benchmark::State& st) {
+  time_steps(st, bare_mesh_cloth(static_cast<int>(st.range(0))), IntegratorKind::network);
+}
+BENCHMARK(BM_MeshStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 
 // The reference the brief measures against: a straightforward scalar loop over
 // springs (array of structs, sqrt and a division, scatter-adds) plus the same
 // semi-implicit Euler node update. Same cloth, same arithmetic, no layout work.
 void BM_ReferenceScalarStep(benchmark::State& st) {
   const int n = static_cast<int>(st.range(0));
-  const Scene scene = resized(n);
-  const ClothNetwork net = scene.build_network();
-  const double dt = std::min(scene.solver.dt, 0.5 * stable_step_bound(net, 2.0));
+  const StepBench bench(bare_cloth(n), IntegratorKind::network);
+  const ClothNetwork& net = bench.simulation().network();
+  const double dt = bench.dt();
   struct Spring {
     int a, b;
     double rest, k, d;
@@ -61,7 +62,7 @@ void BM_ReferenceScalarStep(benchmark::State& st) {
                        net.springs.stiffness[s], net.springs.damping[s]});
   std::vector<Vec3> p(net.node_count()), v(net.node_count(), Vec3::Zero()), f(net.node_count());
   for (std::size_t i = 0; i < p.size(); ++i)
-    p[i] = scene.topology.rest_positions[i];
+    p[i] = bench.simulation().state().position(i);
   for (auto _ : st) {
     for (int step = 0; step < 16; ++step) {
       for (auto& fi : f)

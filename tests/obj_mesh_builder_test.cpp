@@ -11,9 +11,13 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "grid_builder.h"
 #include "input_error.h"
+#include "obj_mesh_writer.h"
 #include "scene.h"
+#include "spring_layer.h"
 
 namespace neurocloth {
 namespace {
@@ -297,6 +301,94 @@ TEST(ObjMesh, APentagonBecomesThreeTriangles) {
   ASSERT_EQ(t.triangles.size(), 3u);
   EXPECT_EQ(t.triangles[2], (std::array<std::int32_t, 3>{0, 3, 4}));
   EXPECT_EQ(count(t, SpringFamily::structural), 7);  // 5 sides, 2 diagonals
+}
+
+// A grid cloth renumbered: node k of the result is node order[k] of `t`.
+ClothTopology renumbered(const ClothTopology& t, const std::vector<int>& order) {
+  std::vector<int> index_of(order.size());
+  ClothTopology r;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    index_of[order[k]] = static_cast<int>(k);
+    r.rest_positions.push_back(t.rest_positions[order[k]]);
+  }
+  for (const auto& tri : t.triangles)
+    r.triangles.push_back({index_of[tri[0]], index_of[tri[1]], index_of[tri[2]]});
+  return r;
+}
+
+ClothTopology grid_mesh(int n, const std::vector<int>& order = {}) {
+  GridSpec g;
+  g.rows = g.cols = n;
+  g.spacing = 0.05;
+  const ClothTopology grid = build_grid(g);
+  const std::string path = (scratch() / "grid.obj").string();
+  write_obj_mesh(order.empty() ? grid : renumbered(grid, order), path);
+  return build(path);
+}
+
+// A grid written as an OBJ file row by row gives its springs in runs about a
+// row long, as the grid builder does: the force loop vectorises (spring_layer.h).
+TEST(ObjMesh, AGridMeshFormsLongRuns) {
+  const ClothTopology t = grid_mesh(32);
+  SpringLayer layer;
+  for (const SpringSpec& s : t.springs) {
+    layer.node_a.push_back(s.a);
+    layer.node_b.push_back(s.b);
+  }
+  layer.rebuild_runs();
+  const double mean_run =
+      static_cast<double>(layer.size()) / static_cast<double>(layer.runs.size());
+  EXPECT_GT(mean_run, 24.0) << layer.size() << " springs in " << layer.runs.size() << " runs";
+}
+
+// An independent count of what the builder must produce: every triangle edge
+// once (structural) and, for every two triangles sharing an edge, a bend
+// spring between their other corners; found by comparing every pair of
+// triangles, in a mesh whose vertex order scatters neighbours.
+TEST(ObjMesh, EveryEdgeOnceAndABendAcrossEverySharedEdge) {
+  std::vector<int> order(36);
+  for (int k = 0; k < 36; ++k)
+    order[k] = (k * 7) % 36;  // 7 is prime to 36: a permutation
+  const ClothTopology t = grid_mesh(6, order);
+  std::multiset<std::pair<Edge, SpringFamily>> expected, built;
+  std::set<Edge> edges;
+  for (const auto& tri : t.triangles)
+    for (int k = 0; k < 3; ++k)
+      edges.insert({std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3])});
+  for (const Edge& e : edges)
+    expected.insert({e, SpringFamily::structural});
+  for (std::size_t i = 0; i < t.triangles.size(); ++i)
+    for (std::size_t j = i + 1; j < t.triangles.size(); ++j) {
+      std::vector<int> only_i, only_j;
+      for (int v : t.triangles[i])
+        if (std::find(t.triangles[j].begin(), t.triangles[j].end(), v) == t.triangles[j].end())
+          only_i.push_back(v);
+      for (int v : t.triangles[j])
+        if (std::find(t.triangles[i].begin(), t.triangles[i].end(), v) == t.triangles[i].end())
+          only_j.push_back(v);
+      if (only_i.size() == 1 && only_j.size() == 1)
+        expected.insert(
+            {{std::min(only_i[0], only_j[0]), std::max(only_i[0], only_j[0])}, SpringFamily::bend});
+    }
+  for (const SpringSpec& s : t.springs)
+    built.insert({{s.a, s.b}, s.family});
+  EXPECT_EQ(built, expected);
+}
+
+// Node k is the file's vertex k + 1 whatever the order of the vertices: pins,
+// pin_motion and RESULT.json count nodes as the file counts its vertices.
+TEST(ObjMesh, NodesKeepTheFilesVertexOrder) {
+  std::vector<int> order(25);
+  for (int k = 0; k < 25; ++k)
+    order[k] = 24 - k;
+  GridSpec g;
+  g.rows = g.cols = 5;
+  g.spacing = 0.05;
+  const ClothTopology grid = build_grid(g);
+  const ClothTopology t = grid_mesh(5, order);
+  ASSERT_EQ(t.rest_positions.size(), 25u);
+  for (int k = 0; k < 25; ++k)
+    EXPECT_LT((t.rest_positions[k] - grid.rest_positions[order[k]]).norm(), 1e-15) << "node " << k;
 }
 
 // /dev/zero never ends: refused as a device, not read until memory runs out.

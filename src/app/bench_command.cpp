@@ -1,7 +1,8 @@
-// `neurocloth-cli bench`: the default scene's cloth resized to N x N (all three
-// spring families, same physical size), stepped with fixed steps through the
-// same Simulation the other commands use, divergence checks included. Reports
-// the median over repeats: this machine is shared and noisy.
+// `neurocloth-cli bench`: the one step benchmark (step_bench.h: the default
+// scene's cloth resized to N x N, stepped by the rule build/step_benchmark
+// uses), timed by the wall clock through the same Simulation the other
+// commands use, divergence checks included. Reports the median over repeats:
+// this machine is shared and noisy.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,8 +12,7 @@
 
 #include "commands.h"
 #include "input_error.h"
-#include "scene.h"
-#include "stability.h"
+#include "step_bench.h"
 
 namespace neurocloth {
 namespace {
@@ -21,13 +21,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-Scene bench_scene(int size, IntegratorKind integrator) {
-  Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), size);
-  scene.solver.integrator = integrator;
-  scene.solver.adaptive = false;
-  return scene;
 }
 
 }  // namespace
@@ -45,22 +38,17 @@ int run_bench(const BenchOptions& o) {
     throw InputError(
         "command line", "--integrator",
         "unknown integrator '" + o.integrator + "' (expected one of: " + integrator_names() + ")");
-  Scene scene = bench_scene(o.size, *kind);
-  {  // a step the explicit integrators survive, so the timing is of a healthy run
-    const ClothNetwork net = scene.build_network();
-    const double limit = make_integrator(*kind, net)->stability_limit();
-    scene.solver.dt = std::min(scene.solver.dt, 0.5 * stable_step_bound(net, std::min(limit, 2.0)));
-  }
-  Simulation sim = scene.make_simulation();
-  sim.advance(10 * scene.solver.dt);  // warm-up: caches, page faults
+  StepBench bench(bare_cloth(o.size), *kind);
+  bench.run(10);  // warm-up: caches, page faults
   std::vector<double> rates;
   for (int r = 0; r < o.repeat; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    sim.advance(o.steps * scene.solver.dt);
+    const long taken = bench.run(o.steps);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    rates.push_back(o.steps / wall);
+    rates.push_back(static_cast<double>(taken) / wall);
   }
+  const Simulation& sim = bench.simulation();
   if (sim.status() != RunStatus::ok) {
     std::fprintf(stderr, "bench: the benchmark cloth diverged (%s)\n",
                  sim.divergence_reason().c_str());
@@ -74,7 +62,7 @@ int run_bench(const BenchOptions& o) {
                           {"nodes", sim.network().node_count()},
                           {"springs", sim.network().spring_count()},
                           {"integrator", o.integrator},
-                          {"dt", scene.solver.dt},
+                          {"dt", bench.dt()},
                           {"steps", o.steps},
                           {"repeat", o.repeat},
                           {"steps_per_second", sps},
@@ -85,7 +73,7 @@ int run_bench(const BenchOptions& o) {
   } else {
     std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, dt %.3g s\n", o.size, o.size,
                 sim.network().node_count(), sim.network().spring_count(), o.integrator.c_str(),
-                scene.solver.dt);
+                bench.dt());
     std::printf("  median of %d runs of %d steps: %.1f steps/s, %.3f ns per spring update\n",
                 o.repeat, o.steps, sps, ns);
   }

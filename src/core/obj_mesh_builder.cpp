@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "input_error.h"
+#include "stencil_order.h"
 #include "text_file.h"
 
 namespace neurocloth {
@@ -230,8 +231,6 @@ ClothTopology build_obj_mesh(const ObjMeshSpec& spec) {
       const int a = tri[k], b = tri[(k + 1) % 3], opposite = tri[(k + 2) % 3];
       edges[{std::min(a, b), std::max(a, b)}].push_back(opposite);
     }
-  // std::map iterates edges in (a, b) order: deterministic, and consecutive edges
-  // of a regular mesh often form stencil runs.
   for (const auto& [edge, opposite] : edges)
     t.springs.push_back({edge.first, edge.second, SpringFamily::structural});
   if (spec.bend) {
@@ -241,6 +240,9 @@ ClothTopology build_obj_mesh(const ObjMeshSpec& spec) {
                            SpringFamily::bend});
     }
   }
+  // Nodes keep the file's vertex order (pins, pin_motion and RESULT.json speak
+  // of vertices); only the springs move, into runs where the mesh is regular.
+  sort_into_stencil_runs(t.springs);
   return t;
 }
 
