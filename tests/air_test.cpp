@@ -13,6 +13,7 @@
 #include "integrator.h"
 #include "modules/module_factories.h"
 #include "scene.h"
+#include "scene_builder.h"
 #include "simulation.h"
 #include "test_support.h"
 
@@ -322,21 +323,16 @@ TEST(AirDrag, FreeNodeDecaysExponentiallyAndPinnedNodeStays) {
 // blowing through it along +z.
 std::string curtain_scene(const std::string& integrator, const std::string& modules,
                           double dt = 1e-3) {
-  return R"({
-  "name": "curtain",
-  "cloth": {
-    "grid": { "rows": 10, "cols": 10, "spacing": 0.05, "origin": [0, 1, 0],
-              "row_direction": [0, -1, 0], "col_direction": [1, 0, 0] },
-    "springs": ["structural", "shear", "bend"],
-    "pins": [[0,0],[0,1],[0,2],[0,3],[0,4],[0,5],[0,6],[0,7],[0,8],[0,9]]
-  },
-  "material": { "spring_constant": 200.0, "node_mass": 0.01, "viscosity": 0.05 },
-  "gravity": [0, -9.81, 0],
-  "solver": { "integrator": ")" +
-         integrator + R"(", "dt": )" + std::to_string(dt) + R"( },
-  "modules": [)" +
-         modules + R"(]
-})";
+  return test::SceneBuilder(10, 10, 0.05)
+      .name("curtain")
+      .origin(Vec3(0, 1, 0))
+      .hanging()
+      .pin_top_row()
+      .material(200.0, 0.01, 0.05)
+      .gravity(Vec3(0, -9.81, 0))
+      .solver(integrator, dt)
+      .modules("[" + modules + "]")
+      .text();
 }
 
 const char* const kWind = R"({ "type": "wind", "velocity": [0, 0, 8] })";

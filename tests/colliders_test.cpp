@@ -1,7 +1,7 @@
 // Colliders (plane, box, sphere, capsule): nodes stay outside, friction sticks
 // and slides where Coulomb says, fast nodes do not tunnel, pins are left alone.
-// Scenes are written here as JSON text and read by parse_scene, as a user's
-// scene file would be; distances are measured with this file's own geometry.
+// Scenes come from the test scene builder and are read by parse_scene, as a
+// user's scene file would be; distances are measured with this file's own geometry.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 
 #include "modules/module_factories.h"
 #include "scene.h"
+#include "scene_builder.h"
 #include "test_support.h"
 
 namespace neurocloth {
@@ -23,44 +24,36 @@ constexpr double kG = 9.81;
 constexpr double kThickness = 0.005;  // the default
 constexpr double kSlack = 1e-9;       // "outside" allows this much round-off
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+using test::SceneBuilder;
+using Json = SceneBuilder::Json;
+
+Json xyz(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
 }
 
-std::string vec(const Vec3& v) {
-  return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
+// An n x n sheet of cotton, `width` wide, level at `height`, centred over the origin.
+SceneBuilder sheet(int n, double width, double height) {
+  return SceneBuilder(n, n, width / (n - 1))
+      .name("sheet")
+      .origin(Vec3(-width / 2, height, -width / 2))
+      .material(100.0, 0.01, 0.1)
+      .friction(0.3);
 }
-
-// An n x n sheet, `width` wide, level at `height`, centred over the origin.
-std::string sheet_scene(int n, double width, double height, const std::string& modules,
-                        const std::string& solver, const std::string& material,
-                        const std::string& pins = "[]") {
-  return R"({ "name": "sheet", "cloth": { "grid": { "rows": )" + std::to_string(n) +
-         ", \"cols\": " + std::to_string(n) + ", \"spacing\": " + num(width / (n - 1)) +
-         ", \"origin\": " + vec(Vec3(-width / 2, height, -width / 2)) +
-         R"( }, "springs": ["structural", "shear", "bend"], "pins": )" + pins +
-         " }, \"material\": " + material + ", \"solver\": " + solver + ", \"modules\": " + modules +
-         " }";
-}
-
-const std::string kCotton =
-    R"({ "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.1, "friction": 0.3 })";
 
 // One free node with no springs: what the friction law acts on undisturbed.
-std::string node_scene(const Vec3& p, double friction, const std::string& modules,
-                       const std::string& integrator = "network", double dt = 0.01) {
-  return R"({ "name": "node", "cloth": { "grid": { "rows": 1, "cols": 1, "spacing": 0.1, "origin": )" +
-         vec(p) +
-         R"( }, "springs": [] }, "material": { "spring_constant": 0.0, "node_mass": 0.1, )" +
-         R"("viscosity": 0.0, "friction": )" + num(friction) +
-         R"( }, "solver": { "integrator": ")" + integrator + R"(", "dt": )" + num(dt) +
-         R"(, "adaptive": false }, "modules": )" + modules + " }";
+SceneBuilder free_node(const Vec3& p, double friction, const std::string& integrator = "network",
+                       double dt = 0.01) {
+  return SceneBuilder(1, 1, 0.1)
+      .name("node")
+      .origin(p)
+      .springs({})
+      .material(0.0, 0.1, 0.0)
+      .friction(friction)
+      .solver(integrator, dt);
 }
 
-Simulation simulate(const std::string& json) {
-  return parse_scene(json, "test.json").make_simulation();
+Simulation simulate(const SceneBuilder& scene) {
+  return scene.parse().make_simulation();
 }
 
 // Signed distances, written independently of the module.
@@ -118,12 +111,11 @@ TEST(ColliderModules, ContactPhaseNoStateAndTypeNames) {
 }
 
 TEST(ColliderModules, SceneBuildsEveryColliderAndRunsIt) {
-  Simulation sim = simulate(sheet_scene(4, 0.3, 2.0, R"([
+  Simulation sim = simulate(sheet(4, 0.3, 2.0).solver("network", 0.01).modules(R"([
       { "type": "plane", "point": [0, -5, 0] },
       { "type": "box", "center": [0, -5, 0], "size": [1, 1, 1] },
       { "type": "sphere", "center": [0, -5, 0], "radius": 1 },
-      { "type": "capsule", "a": [0, -5, 0], "b": [1, -5, 0], "radius": 1 }])",
-                                        R"({ "dt": 0.01 })", kCotton));
+      { "type": "capsule", "a": [0, -5, 0], "b": [1, -5, 0], "radius": 1 }])"));
   sim.advance(0.05);
   const auto reports = sim.module_reports();
   ASSERT_EQ(reports.size(), 4u);
@@ -137,11 +129,9 @@ TEST(ColliderModules, SceneBuildsEveryColliderAndRunsIt) {
 
 // A collider the cloth never reaches changes nothing, to the bit.
 TEST(ColliderModules, UnreachedColliderChangesNothing) {
-  const std::string solver = R"({ "dt": 0.005 })";
-  Simulation bare = simulate(sheet_scene(6, 0.5, 1.0, "[]", solver, kCotton, "[[0, 0], [0, 5]]"));
-  Simulation far =
-      simulate(sheet_scene(6, 0.5, 1.0, R"([{ "type": "plane", "point": [0, -50, 0] }])", solver,
-                           kCotton, "[[0, 0], [0, 5]]"));
+  SceneBuilder scene = sheet(6, 0.5, 1.0).solver("network", 0.005).pins({{0, 0}, {0, 5}});
+  Simulation bare = simulate(scene);
+  Simulation far = simulate(scene.module({{"type", "plane"}, {"point", {0, -50, 0}}}));
   bare.advance(0.5);
   far.advance(0.5);
   ASSERT_EQ(far.module_reports().size(), 1u);
@@ -174,10 +164,8 @@ TEST(ColliderDrape, ClothFallsOverASphere) {
   const Vec3 c(0, 0.3, 0);
   const double r = 0.25;
   const int n = 16;
-  Simulation sim = simulate(sheet_scene(
-      n, 1.0, 0.7,
-      R"([{ "type": "sphere", "center": )" + vec(c) + R"(, "radius": )" + num(r) + " }]",
-      R"({ "dt": 0.02, "adaptive": true })", kCotton));
+  Simulation sim = simulate(sheet(n, 1.0, 0.7).solver("network", 0.02, true).module(
+      {{"type", "sphere"}, {"center", xyz(c)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 2.0, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
@@ -191,10 +179,8 @@ TEST(ColliderDrape, ClothFoldsOverACapsuleBar) {
   const Vec3 a(-0.7, 0.3, 0), b(0.7, 0.3, 0);
   const double r = 0.05;
   const int n = 16;
-  Simulation sim = simulate(sheet_scene(n, 1.0, 0.45,
-                                        R"([{ "type": "capsule", "a": )" + vec(a) + R"(, "b": )" +
-                                            vec(b) + R"(, "radius": )" + num(r) + " }]",
-                                        R"({ "dt": 0.02, "adaptive": true })", kCotton));
+  Simulation sim = simulate(sheet(n, 1.0, 0.45).solver("network", 0.02, true).module(
+      {{"type", "capsule"}, {"a", xyz(a)}, {"b", xyz(b)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return segment_distance(p, a, b) - r; };
   run_outside(sim, 2.0, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the bar";
@@ -208,9 +194,8 @@ TEST(ColliderDrape, ClothFoldsOverACapsuleBar) {
 // A cloth falls flat onto a tilted floor with high friction and lies on it.
 TEST(ColliderDrape, ClothLandsOnAPlaneAndLiesOnIt) {
   const Vec3 normal = Vec3(0.1, 1, 0).normalized();
-  Simulation sim = simulate(
-      sheet_scene(10, 0.5, 0.2, R"([{ "type": "plane", "normal": [0.1, 1, 0], "friction": 0.8 }])",
-                  R"({ "dt": 0.02, "adaptive": true })", kCotton));
+  Simulation sim = simulate(sheet(10, 0.5, 0.2).solver("network", 0.02, true).module(
+      {{"type", "plane"}, {"normal", {0.1, 1, 0}}, {"friction", 0.8}}));
   run_outside(sim, 1.5, 0.1, [&](const Vec3& p) { return normal.dot(p); });
   const ClothState& s = sim.state();
   for (std::size_t i = 0; i < s.size(); ++i)
@@ -224,10 +209,8 @@ class ColliderIntegrators : public ::testing::TestWithParam<const char*> {};
 TEST_P(ColliderIntegrators, KeepNodesOutsideASphere) {
   const Vec3 c(0, 0, 0);
   const double r = 0.2;
-  Simulation sim = simulate(sheet_scene(
-      8, 0.6, 0.3, R"([{ "type": "sphere", "center": [0, 0, 0], "radius": )" + num(r) + " }]",
-      std::string(R"({ "integrator": ")") + GetParam() + R"(", "dt": 0.02, "adaptive": true })",
-      kCotton));
+  Simulation sim = simulate(sheet(8, 0.6, 0.3).solver(GetParam(), 0.02, true).module(
+      {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 1.5, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
@@ -247,15 +230,15 @@ struct Slide {
   double off;    // distance from the plane minus the thickness, m
 };
 
-Slide slide(double slope, double material_friction, const std::string& contact_keys,
+// `contact_keys`: the plane's own friction keys, if any.
+Slide slide(double slope, double material_friction, const Json& contact_keys,
             const char* integrator = "network", double seconds = 1.0) {
   const double theta = std::atan(slope);
   const Vec3 n(-std::sin(theta), std::cos(theta), 0), t(std::cos(theta), std::sin(theta), 0);
   const Vec3 start = kThickness * n;
-  Simulation sim = simulate(node_scene(
-      start, material_friction,
-      R"([{ "type": "plane", "point": [0, 0, 0], "normal": )" + vec(n) + contact_keys + " }]",
-      integrator));
+  Json plane = {{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", xyz(n)}};
+  plane.update(contact_keys);
+  Simulation sim = simulate(free_node(start, material_friction, integrator).module(plane));
   EXPECT_EQ(sim.advance(seconds), RunStatus::ok);
   const Vec3 p = sim.state().position(0);
   return {(p - start).dot(t), sim.state().velocity(0).dot(t), n.dot(p) - kThickness};
@@ -269,7 +252,7 @@ double sliding_acceleration(double slope, double mu) {
 class ColliderFriction : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ColliderFriction, SticksBelowTheCoulombAngle) {
-  const Slide s = slide(0.9 * 0.3, 0.0, R"(, "friction": 0.3)", GetParam());
+  const Slide s = slide(0.9 * 0.3, 0.0, {{"friction", 0.3}}, GetParam());
   EXPECT_LT(std::abs(s.along), 1e-9);
   EXPECT_LT(std::abs(s.speed), 1e-9);
   EXPECT_LT(std::abs(s.off), 1e-9);
@@ -277,7 +260,7 @@ TEST_P(ColliderFriction, SticksBelowTheCoulombAngle) {
 
 TEST_P(ColliderFriction, SlidesAboveItWithCoulombAcceleration) {
   const double slope = 1.1 * 0.3, T = 1.0;
-  const Slide s = slide(slope, 0.0, R"(, "friction": 0.3)", GetParam(), T);
+  const Slide s = slide(slope, 0.0, {{"friction", 0.3}}, GetParam(), T);
   const double a = sliding_acceleration(slope, 0.3);
   EXPECT_NEAR(-s.speed / T, a, 0.02 * a);
   EXPECT_LT(std::abs(s.off), 1e-9) << "the node leaves the plane";
@@ -297,9 +280,9 @@ INSTANTIATE_TEST_SUITE_P(Colliders, ColliderFriction,
 // Between the kinetic and the static coefficient a node at rest stays; above
 // the static one it slides, braked by the kinetic one.
 TEST(ColliderStaticFriction, ThresholdIsTheStaticCoefficient) {
-  const std::string keys = R"(, "friction": 0.3, "static_friction": 0.45)";
+  const Json keys = {{"friction", 0.3}, {"static_friction", 0.45}};
   EXPECT_LT(std::abs(slide(0.4, 0.0, keys).along), 1e-9);
-  EXPECT_GT(-slide(0.4, 0.0, R"(, "friction": 0.3)").along, 0.1) << "no static friction: slides";
+  EXPECT_GT(-slide(0.4, 0.0, {{"friction", 0.3}}).along, 0.1) << "no static friction: slides";
   const Slide s = slide(0.5, 0.0, keys);
   const double a = sliding_acceleration(0.5, 0.3);
   EXPECT_NEAR(-s.speed, a, 0.02 * a);
@@ -307,27 +290,26 @@ TEST(ColliderStaticFriction, ThresholdIsTheStaticCoefficient) {
 
 // Unset, the coefficients are the node's material friction.
 TEST(ColliderStaticFriction, DefaultsToTheMaterialFriction) {
-  EXPECT_LT(std::abs(slide(0.27, 0.3, "").along), 1e-9);
-  const Slide s = slide(0.27, 0.2, "");
+  EXPECT_LT(std::abs(slide(0.27, 0.3, Json::object()).along), 1e-9);
+  const Slide s = slide(0.27, 0.2, Json::object());
   const double a = sliding_acceleration(0.27, 0.2);
   EXPECT_NEAR(-s.speed, a, 0.02 * a);
   // The collider's own coefficient wins over the material's.
-  EXPECT_LT(std::abs(slide(0.27, 0.2, R"(, "friction": 0.3)").along), 1e-9);
-  EXPECT_GT(-slide(0.27, 0.3, R"(, "friction": 0.2)").along, 0.1);
+  EXPECT_LT(std::abs(slide(0.27, 0.2, {{"friction", 0.3}}).along), 1e-9);
+  EXPECT_GT(-slide(0.27, 0.3, {{"friction", 0.2}}).along, 0.1);
 }
 
 // A node with a given start and velocity, one step at a time.
-Simulation fast_node(const Vec3& p, const Vec3& v, const std::string& modules,
+Simulation fast_node(const Vec3& p, const Vec3& v, const Json& collider,
                      const char* integrator = "network") {
-  Simulation sim = simulate(node_scene(p, 0.3, modules, integrator, 0.04));
+  Simulation sim = simulate(free_node(p, 0.3, integrator, 0.04).module(collider));
   ClothState s = sim.state();
   s.set_velocity(0, v);
   sim.set_state(s);
   return sim;
 }
 
-const std::string kTable =
-    R"([{ "type": "box", "center": [0, 0.375, 0], "size": [0.8, 0.75, 0.8] }])";
+const Json kTable = {{"type", "box"}, {"center", {0, 0.375, 0}}, {"size", {0.8, 0.75, 0.8}}};
 
 // Falling at 10 m/s the node is 0.4 m deep after one step, deeper below the top
 // than inside the nearest side: it must still come out on top.
@@ -337,10 +319,10 @@ TEST(ColliderTunnelling, FastNodeLandsOnTheBoxTop) {
          {Vec3(0, 0, 0), Vec3(0.37, 0, 0), Vec3(-0.38, 0, 0.2), Vec3(0.39, 0, -0.39)}) {
       Simulation sim = fast_node(xz + Vec3(0, 0.8, 0), Vec3(0, -10, 0), kTable, integrator);
       sim.advance(0.04);
-      EXPECT_NEAR(sim.state().y[0], 0.75 + kThickness, 1e-12) << integrator << " at " << vec(xz);
+      EXPECT_NEAR(sim.state().y[0], 0.75 + kThickness, 1e-12) << integrator << " at " << xz.transpose();
       sim.advance(0.96);
       const Vec3 p = sim.state().position(0);
-      EXPECT_NEAR(p.y(), 0.75 + kThickness, 1e-12) << integrator << " at " << vec(xz);
+      EXPECT_NEAR(p.y(), 0.75 + kThickness, 1e-12) << integrator << " at " << xz.transpose();
       EXPECT_NEAR(p.x(), xz.x(), 1e-12);
       EXPECT_NEAR(p.z(), xz.z(), 1e-12);
     }
@@ -349,7 +331,7 @@ TEST(ColliderTunnelling, FastNodeLandsOnTheBoxTop) {
 // A step longer than the box is thick ends beyond it: the node goes back on top.
 TEST(ColliderTunnelling, FastNodeDoesNotCrossAThinBox) {
   Simulation sim = fast_node(Vec3(0.1, 0.6, 0), Vec3(0, -10, 0),
-                             R"([{ "type": "box", "center": [0, 0.5, 0], "size": [1, 0.02, 1] }])");
+                             {{"type", "box"}, {"center", {0, 0.5, 0}}, {"size", {1, 0.02, 1}}});
   sim.advance(0.04);
   EXPECT_NEAR(sim.state().y[0], 0.51 + kThickness, 1e-12);
   sim.advance(0.5);
@@ -374,23 +356,20 @@ TEST(ColliderPins, PinnedNodeIsNeverMoved) {
   const double width = 0.3, height = 0.5;
   const Vec3 pin(-width / 2, height, -width / 2);  // node (0, 0)
   const double r = 0.12;
-  for (const std::string& shape :
-       {R"({ "type": "sphere", "center": )" + vec(pin) + R"(, "radius": )" + num(r) + " }",
-        R"({ "type": "plane", "point": )" + vec(pin + Vec3(0, 0.05, 0)) + " }"}) {
-    Simulation sim = simulate(sheet_scene(n, width, height, "[" + shape + "]", R"({ "dt": 0.005 })",
-                                          kCotton, "[[0, 0]]"));
+  const Json sphere = {{"type", "sphere"}, {"center", xyz(pin)}, {"radius", r}};
+  const SceneBuilder scene = sheet(n, width, height).solver("network", 0.005).pins({{0, 0}});
+  for (const Json& shape :
+       {sphere, Json{{"type", "plane"}, {"point", xyz(pin + Vec3(0, 0.05, 0))}}}) {
+    Simulation sim = simulate(SceneBuilder(scene).module(shape));
     sim.advance(0.5);
     const ClothState& s = sim.state();
-    EXPECT_EQ(s.x[0], pin.x()) << shape;
-    EXPECT_EQ(s.y[0], pin.y()) << shape;
-    EXPECT_EQ(s.z[0], pin.z()) << shape;
-    EXPECT_EQ(s.velocity(0), Vec3::Zero()) << shape;
+    EXPECT_EQ(s.x[0], pin.x()) << shape.dump();
+    EXPECT_EQ(s.y[0], pin.y()) << shape.dump();
+    EXPECT_EQ(s.z[0], pin.z()) << shape.dump();
+    EXPECT_EQ(s.velocity(0), Vec3::Zero()) << shape.dump();
   }
   // The sphere keeps the free nodes out around the pin.
-  Simulation sim = simulate(sheet_scene(
-      n, width, height,
-      R"([{ "type": "sphere", "center": )" + vec(pin) + R"(, "radius": )" + num(r) + " }]",
-      R"({ "dt": 0.005 })", kCotton, "[[0, 0]]"));
+  Simulation sim = simulate(SceneBuilder(scene).module(sphere));
   run_outside(sim, 0.5, 0.1, [&](const Vec3& p) { return (p - pin).norm() - r; });
 }
 

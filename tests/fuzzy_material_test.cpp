@@ -11,6 +11,7 @@
 #include "fuzzy/fcl_writer.h"
 #include "input_error.h"
 #include "relaxation.h"
+#include "scene_builder.h"
 #include "test_support.h"
 
 namespace neurocloth {
@@ -175,13 +176,14 @@ TEST(FuzzyMaterial, SceneMaterialFromRulesSetsEveryWeight) {
 
 TEST(FuzzyMaterial, ScenePresetAndBadMaterialsNameFileAndField) {
   const std::string path = std::string(NEUROCLOTH_TEST_TMP) + "/preset_scene.json";
-  const std::string base =
-      R"({"cloth": {"grid": {"rows": 3, "cols": 3, "spacing": 0.1}}, "material": )";
-  const Scene s = parse_scene(base + R"({"preset": "leather"}})", path);
+  auto scene_of = [](const std::string& material) {
+    return test::SceneBuilder(3, 3, 0.1).set("/material", nlohmann::json::parse(material)).text();
+  };
+  const Scene s = parse_scene(scene_of(R"({"preset": "leather"})"), path);
   EXPECT_NEAR(s.material.spring_constant, preset("leather").spring_constant, 1e-12);
   auto error_field = [&](const std::string& material) {
     try {
-      parse_scene(base + material + "}", path);
+      parse_scene(scene_of(material), path);
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
       return e.field();

@@ -249,8 +249,8 @@ TEST(ObjMesh, ACoordinateThatIsNotAFiniteNumberIsNamedWithItsLine) {
   EXPECT_EQ(t.rest_positions[2], Vec3(0.5, 1, 0));
 }
 
-// Triangulating a polygon costs its corners; past 256 a face is refused
-// before anything is parsed (60,000 corners took 15 s before: issue 11).
+// Triangulating a polygon costs its corners (60,000 corners would take some
+// 15 s); past 256 a face is refused before anything is parsed.
 TEST(ObjMesh, AFaceWithTooManyCornersIsRefusedWithItsLine) {
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf";
   for (int i = 0; i < 60000; ++i)

@@ -6,24 +6,20 @@
 #include <string>
 
 #include "scene.h"
+#include "scene_builder.h"
 #include "test_support.h"
 
 namespace neurocloth {
 namespace {
 
 std::string hanger(const std::string& pin_motion) {
-  return R"({
-  "cloth": {
-    "grid": { "rows": 6, "cols": 6, "spacing": 0.1, "origin": [0, 1, 0],
-              "row_direction": [0, -1, 0], "col_direction": [1, 0, 0] },
-    "springs": ["structural", "shear", "bend"],
-    "pins": [[0, 0], [0, 5]]
-  },
-  "material": { "spring_constant": 200.0, "node_mass": 0.01, "viscosity": 0.05 },
-  "solver": { "integrator": "network", "dt": 0.001 },
-  "modules": [ )" +
-         pin_motion + R"( ]
-})";
+  return test::SceneBuilder(6, 6, 0.1)
+      .origin(Vec3(0, 1, 0))
+      .hanging()
+      .pins({{0, 0}, {0, 5}})
+      .material(200.0, 0.01, 0.05)
+      .modules("[" + pin_motion + "]")
+      .text();
 }
 
 TEST(PinMotion, KeyframesMoveThePinsAndSetTheirVelocity) {

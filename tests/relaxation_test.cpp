@@ -69,8 +69,8 @@ TEST(Relaxation, ExternalForcesCount) {
   EXPECT_NEAR(F.at(9).y() - net.mass(9) * 9.81, 0.0, 1e-9);
 }
 
-// Nothing free, nothing to relax: converged as it is, with no step (it said
-// "did NOT converge ... last step inf m" before: issue 11).
+// Nothing free, nothing to relax: converged as it is, with no step (not "did
+// NOT converge ... last step inf m").
 TEST(Relaxation, AClothWithEveryNodePinnedIsConvergedAsItIs) {
   const Scene scene = test::asset_scene("hanging");
   ClothNetwork net = scene.build_network();

@@ -7,34 +7,28 @@
 #include <string>
 
 #include "scene.h"
+#include "scene_builder.h"
 #include "scene_test_support.h"
 #include "test_support.h"
 
 namespace neurocloth {
 namespace {
 
-// A small scene whose modules array is line 8 onwards, one module per line.
-std::string scene_with(const std::string& modules) {
-  return R"({
-  "cloth": {
-    "grid": { "rows": 4, "cols": 4, "spacing": 0.1 },
-    "pins": [[0, 0]]
-  },
-  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
-  "solver": { "integrator": "network", "dt": 0.001 },
-  "modules": [
-)" + modules +
-         R"(
-  ]
-})";
+// A small scene with these modules (the scene file's "modules" array), each
+// on a line of its own.
+test::SceneBuilder scene_with(const std::string& modules) {
+  return test::SceneBuilder(4, 4, 0.1).pins({{0, 0}}).modules(modules);
 }
 
-void expect_module_error(const std::string& module_line, const std::string& field,
+void expect_module_error(const std::string& module, const std::string& field,
                          const std::string& message_part) {
   const std::string path = test::scratch_path("bad_module.json");
-  const auto e = test::parse_error(scene_with(module_line), path);
+  const std::string text = scene_with("[" + module + "]").text();
+  const auto e = test::parse_error(text, path);
   if (!e) return;
-  test::expect_names(*e, path, field, 9);
+  // The line the module stands on.
+  test::expect_names(*e, path, field,
+                     test::line_of(text, test::SceneBuilder::Json::parse(module).dump()));
   EXPECT_NE(std::string(e->what()).find(message_part), std::string::npos) << e->what();
 }
 
@@ -53,18 +47,17 @@ TEST(SceneModules, ASceneWithoutModulesCarriesNone) {
   // The oracle: one constraint on the same cloth (the network steps in place)
   // needs its list and the step-start buffer.
   Scene limited = scene;
-  limited.modules =
-      parse_scene(scene_with(R"({"type": "strain_limit", "max_stretch": 1.2})"), "t.json").modules;
+  limited.modules = scene_with(R"([{"type": "strain_limit", "max_stretch": 1.2}])").parse().modules;
   EXPECT_GE(limited.make_simulation().module_overhead_bytes(),
             3 * scene.topology.rest_positions.size() * sizeof(double));
 }
 
 TEST(SceneModules, DeclaredModulesAreBuiltOnceAndReportTheirCost) {
-  Simulation sim = parse_scene(scene_with(R"(
+  Simulation sim = scene_with(R"([
     {"type": "plane", "point": [0, -5, 0]},
     {"type": "strain_limit", "max_stretch": 1.2},
-    {"type": "pin_motion", "amplitude": [0.1, 0, 0], "frequency": 1})"),
-                               "t.json")
+    {"type": "pin_motion", "amplitude": [0.1, 0, 0], "frequency": 1}])")
+                       .parse()
                        .make_simulation();
   sim.advance(0.01);
   const auto reports = sim.module_reports();
@@ -271,12 +264,11 @@ TEST(SceneModulesInput, MissingAndUnknownKeys) {
 
 TEST(SceneModulesInput, ModulesMustBeAnArray) {
   const std::string path = test::scratch_path("bad_modules.json");
-  std::string text = scene_with(R"(    {"type": "plane"})");
-  text.replace(text.find("\"modules\": ["), 12, "\"modules\": {\"list\": [");
-  text.replace(text.rfind(']'), 1, "]}");
+  const std::string text =
+      scene_with("[]").set("/modules", {{"list", {{{"type", "plane"}}}}}).text();
   const auto e = test::parse_error(text, path);
   if (e) {
-    test::expect_names(*e, path, "modules", 8);
+    test::expect_names(*e, path, "modules", test::line_of(text, "\"modules\""));
     EXPECT_NE(std::string(e->what()).find("expected an array"), std::string::npos) << e->what();
   }
 }

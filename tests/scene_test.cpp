@@ -4,15 +4,15 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <set>
 #include <string>
 
 #include "input_error.h"
+#include "scene_builder.h"
 #include "scene_test_support.h"
 #include "test_support.h"
+#include "text_file.h"
 
 namespace neurocloth {
 namespace {
@@ -23,28 +23,25 @@ using test::scratch;
 using test::scratch_path;
 using test::write_file;
 
-// A small valid grid scene. Each line holds one thing, so a test that breaks one
-// value knows the line the error must name.
-const std::string kGridScene = R"({
-  "name": "small",
-  "cloth": {
-    "grid": { "rows": 4, "cols": 5, "spacing": 0.1, "origin": [1, 2, 3] },
-    "springs": ["structural", "shear", "bend"],
-    "pins": [[0, 0], [2, 3]]
-  },
-  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
-  "gravity": [0, -9.81, 0],
-  "solver": { "integrator": "network", "dt": 0.001 }
-}
-)";
+using test::line_of;
+using test::SceneBuilder;
 
-// kGridScene with the first occurrence of `from` replaced by `to`.
-std::string with(const std::string& from, const std::string& to,
-                 const std::string& base = kGridScene) {
-  const auto at = base.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' is not in the scene";
-  if (at == std::string::npos) return base;
-  std::string s = base;
+// A small valid grid scene.
+SceneBuilder grid_scene() {
+  return SceneBuilder(4, 5, 0.1)
+      .name("small")
+      .origin(Vec3(1, 2, 3))
+      .pins({{0, 0}, {2, 3}})
+      .gravity(Vec3(0, -9.81, 0));
+}
+
+// `text` with the first occurrence of `from` replaced by `to`: for what JSON
+// cannot hold (a number out of range, a missing comma).
+std::string with(const std::string& from, const std::string& to, const std::string& text) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' is not in:\n" << text;
+  if (at == std::string::npos) return text;
+  std::string s = text;
   s.replace(at, from.size(), to);
   return s;
 }
@@ -53,6 +50,13 @@ void expect_grid_error(const std::string& text, const std::string& field, int li
   const std::string path = scratch_path("bad_grid.json");
   const auto e = parse_error(text, path);
   if (e) expect_names(*e, path, field, line);
+}
+
+// The error names `field` on the line where `at` stands in the scene's text.
+void expect_grid_error(const SceneBuilder& scene, const std::string& field,
+                       const std::string& at) {
+  const std::string text = scene.text();
+  expect_grid_error(text, field, line_of(text, at));
 }
 
 TEST(SceneAssets, EveryShippedSceneLoads) {
@@ -105,7 +109,7 @@ TEST(SceneAssets, MeshSquareHasNineNodesAndTwentyFourSprings) {
 }
 
 TEST(SceneGrid, NodeIndexIsRowTimesColsPlusCol) {
-  const Scene scene = parse_scene(kGridScene, scratch_path("small.json"));
+  const Scene scene = grid_scene().parse(scratch_path("small.json"));
   EXPECT_EQ(scene.name, "small");
   // [2, 3] in a 4 x 5 grid is node 2 * 5 + 3.
   EXPECT_EQ(scene.pins, (std::vector<int>{0, 13}));
@@ -120,28 +124,40 @@ TEST(SceneGrid, NodeIndexIsRowTimesColsPlusCol) {
 }
 
 TEST(SceneGrid, PinsMayBeNodeIndices) {
-  const Scene scene = parse_scene(with("[[0, 0], [2, 3]]", "[7, 19]"), scratch_path("small.json"));
+  const Scene scene = grid_scene().pins({7, 19}).parse(scratch_path("small.json"));
   EXPECT_EQ(scene.pins, (std::vector<int>{7, 19}));
 }
 
 TEST(SceneGrid, NameDefaultsToFileStem) {
-  const Scene scene =
-      parse_scene(with(R"("name": "small",)", ""), scratch_path("stemmed_name.json"));
+  const Scene scene = grid_scene().erase("/name").parse(scratch_path("stemmed_name.json"));
   EXPECT_EQ(scene.name, "stemmed_name");
 }
 
 TEST(SceneJson, MalformedJsonNamesLineAndColumn) {
-  // The comma after "name" is missing: the parser trips over the next key on line 3.
+  // The first line's closing comma is missing: the parser trips over the key
+  // that begins the next line.
   const std::string path = scratch_path("malformed.json");
-  const auto e = parse_error(with(R"("name": "small",)", R"("name": "small")"), path);
+  std::string text = grid_scene().text();
+  const int line = line_of(text, ",\n") + 1;
+  text.erase(text.find(",\n"), 1);
+  const auto e = parse_error(text, path);
   ASSERT_TRUE(e);
   EXPECT_EQ(e->file(), path);
-  EXPECT_EQ(e->line(), 3);
-  // Line 3 is `  "cloth": {`; the parser reports a column on the unexpected key.
-  EXPECT_GE(e->column(), 3);
-  EXPECT_LE(e->column(), 11);
+  EXPECT_EQ(e->line(), line);
+  // The parser reports a column on the unexpected key (its quotes, and the
+  // colon and space after it).
+  std::size_t begin = 0;
+  for (int l = 1; l < line; ++l)
+    begin = text.find('\n', begin) + 1;
+  const std::size_t key = text.find('"', begin);
+  const int key_column = static_cast<int>(key - begin) + 1;
+  const int key_length = static_cast<int>(text.find('"', key + 1) - key) + 1;
+  EXPECT_GE(e->column(), key_column);
+  EXPECT_LE(e->column(), key_column + key_length + 1);
   const std::string what = e->what();
-  EXPECT_NE(what.find(path + ":3:" + std::to_string(e->column())), std::string::npos) << what;
+  EXPECT_NE(what.find(path + ":" + std::to_string(line) + ":" + std::to_string(e->column())),
+            std::string::npos)
+      << what;
   EXPECT_NE(what.find("malformed JSON"), std::string::npos) << what;
 }
 
@@ -158,7 +174,8 @@ TEST(SceneJson, TruncatedJsonNamesTheEnd) {
 // come out as an InputError naming the file like every other.
 TEST(SceneJson, NumberOverflowIsAnInputError) {
   const std::string path = scratch_path("overflow.json");
-  const auto e = parse_error(with("\"node_mass\": 0.01", "\"node_mass\": 1e400"), path);
+  const auto e =
+      parse_error(with("\"node_mass\": 0.01", "\"node_mass\": 1e400", grid_scene().text()), path);
   ASSERT_TRUE(e);
   EXPECT_EQ(e->file(), path);
   EXPECT_NE(std::string(e->what()).find(path), std::string::npos) << e->what();
@@ -209,8 +226,7 @@ TEST(SceneLimits, EveryLimitNamesItsFieldLineAndMeaning) {
   for (const auto& c : cases) {
     SCOPED_TRACE(std::string(c.scene) + ": " + c.to);
     const std::string asset = assets_directory() + "/scenes/" + c.scene + ".json";
-    std::ifstream in(asset);
-    const std::string original{std::istreambuf_iterator<char>(in), {}};
+    const std::string original = read_text_file(asset, "scene file", kMaxSceneBytes);
     const std::string text = with(c.from, c.to, original);
     const int line =
         1 + static_cast<int>(std::count(text.begin(), text.begin() + text.find(c.to), '\n'));
@@ -244,7 +260,7 @@ TEST(SceneJson, UnreadableSceneFileNamesThePath) {
 
 TEST(SceneJson, LoadSceneReadsTheFileItNames) {
   const std::string path = scratch_path("on_disk.json");
-  write_file(path, with("\"rows\": 4", "\"rows\": 3"));
+  write_file(path, grid_scene().set("/cloth/grid/rows", 3).text());
   const Scene scene = load_scene(path);
   EXPECT_EQ(scene.path, path);
   EXPECT_EQ(scene.topology.rest_positions.size(), 15u);
@@ -252,38 +268,41 @@ TEST(SceneJson, LoadSceneReadsTheFileItNames) {
 
 TEST(SceneFields, MissingRequiredKeyNamesItAtTheLineOfItsObject) {
   // A missing key has no line of its own: the error points at the object lacking it.
-  expect_grid_error(with(R"("node_mass": 0.01, )", ""), "material.node_mass", 8);
-  expect_grid_error(with(R"("spacing": 0.1, )", ""), "cloth.grid.spacing", 4);
+  expect_grid_error(grid_scene().erase("/material/node_mass"), "material.node_mass",
+                    "\"material\"");
+  expect_grid_error(grid_scene().erase("/cloth/grid/spacing"), "cloth.grid.spacing", "\"grid\"");
 }
 
 TEST(SceneFields, MissingMaterialNamesIt) {
-  expect_grid_error(
-      with(R"(  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
-)",
-           ""),
-      "material", 1);  // the root object lacks it
+  expect_grid_error(grid_scene().erase("/material").text(), "material",
+                    1);  // the root object lacks it
 }
 
 TEST(SceneFields, MistypedKeyIsUnknown) {
   const std::string path = scratch_path("typo.json");
-  const auto e = parse_error(with("spring_constant", "sping_constant"), path);
+  const std::string text =
+      grid_scene().erase("/material/spring_constant").set("/material/sping_constant", 100.0).text();
+  const auto e = parse_error(text, path);
   ASSERT_TRUE(e);
-  expect_names(*e, path, "material.sping_constant", 8);
+  expect_names(*e, path, "material.sping_constant", line_of(text, "\"sping_constant\""));
   // The message says what would have been accepted.
   EXPECT_NE(std::string(e->what()).find("spring_constant"), std::string::npos);
 }
 
 TEST(SceneFields, UnknownTopLevelKey) {
-  expect_grid_error(with(R"("gravity")", R"("gravitation")"), "gravitation", 9);
+  expect_grid_error(grid_scene().erase("/gravity").set("/gravitation", {0, -9.81, 0}),
+                    "gravitation", "\"gravitation\"");
 }
 
 TEST(SceneFields, WrongTypeNamesFieldAndType) {
   const std::string path = scratch_path("rows_string.json");
-  const auto e = parse_error(with("\"rows\": 4", "\"rows\": \"4\""), path);
+  const std::string text = grid_scene().set("/cloth/grid/rows", "4").text();
+  const auto e = parse_error(text, path);
   ASSERT_TRUE(e);
-  expect_names(*e, path, "cloth.grid.rows", 4);
-  // Line 4 is `    "grid": { "rows": "4", ...`; the value starts at column 23.
-  EXPECT_EQ(e->column(), 23);
+  expect_names(*e, path, "cloth.grid.rows", line_of(text, "\"rows\""));
+  // The column is where the value starts on its line.
+  const std::size_t value = text.find("\"rows\":\"4\"") + 7;
+  EXPECT_EQ(e->column(), static_cast<int>(value - (text.rfind('\n', value) + 1)) + 1);
   EXPECT_NE(std::string(e->what()).find("string"), std::string::npos) << e->what();
 }
 
@@ -291,21 +310,23 @@ TEST(SceneFields, WrongTypeNamesFieldAndType) {
 // user wrote some other number.
 TEST(SceneFields, HugeIntegerIsOutOfRange) {
   const std::string path = scratch_path("huge_rows.json");
-  const auto e = parse_error(with("\"rows\": 4", "\"rows\": 18446744073709551615"), path);
+  const std::string text = grid_scene().set("/cloth/grid/rows", 18446744073709551615ull).text();
+  const auto e = parse_error(text, path);
   ASSERT_TRUE(e);
-  expect_names(*e, path, "cloth.grid.rows", 4);
+  expect_names(*e, path, "cloth.grid.rows", line_of(text, "\"rows\""));
   EXPECT_NE(e->message().find("out of range"), std::string::npos) << e->what();
 }
 
 TEST(SceneFields, FractionalRowsAreRejected) {
-  expect_grid_error(with("\"rows\": 4", "\"rows\": 4.5"), "cloth.grid.rows", 4);
+  expect_grid_error(grid_scene().set("/cloth/grid/rows", 4.5), "cloth.grid.rows", "\"rows\"");
 }
 
 TEST(SceneFields, UnknownIntegratorListsValidNames) {
   const std::string path = scratch_path("integrator.json");
-  const auto e = parse_error(with("\"network\"", "\"leapfrog\""), path);
+  const std::string text = grid_scene().set("/solver/integrator", "leapfrog").text();
+  const auto e = parse_error(text, path);
   ASSERT_TRUE(e);
-  expect_names(*e, path, "solver.integrator", 10);
+  expect_names(*e, path, "solver.integrator", line_of(text, "\"integrator\""));
   const std::string what = e->what();
   EXPECT_NE(what.find("leapfrog"), std::string::npos) << what;
   for (const char* name : {"network", "explicit_euler", "verlet", "rk4", "implicit_euler"})
@@ -313,73 +334,78 @@ TEST(SceneFields, UnknownIntegratorListsValidNames) {
 }
 
 TEST(SceneFields, RowsAndColsMustBePositive) {
-  expect_grid_error(with("\"rows\": 4", "\"rows\": 0"), "cloth.grid.rows", 4);
-  expect_grid_error(with("\"rows\": 4", "\"rows\": -3"), "cloth.grid.rows", 4);
-  expect_grid_error(with("\"cols\": 5", "\"cols\": 0"), "cloth.grid.cols", 4);
-  expect_grid_error(with("\"cols\": 5", "\"cols\": -1"), "cloth.grid.cols", 4);
+  expect_grid_error(grid_scene().set("/cloth/grid/rows", 0), "cloth.grid.rows", "\"rows\"");
+  expect_grid_error(grid_scene().set("/cloth/grid/rows", -3), "cloth.grid.rows", "\"rows\"");
+  expect_grid_error(grid_scene().set("/cloth/grid/cols", 0), "cloth.grid.cols", "\"cols\"");
+  expect_grid_error(grid_scene().set("/cloth/grid/cols", -1), "cloth.grid.cols", "\"cols\"");
 }
 
 TEST(SceneFields, SpacingMustBePositive) {
-  expect_grid_error(with("\"spacing\": 0.1", "\"spacing\": 0"), "cloth.grid.spacing", 4);
+  expect_grid_error(grid_scene().set("/cloth/grid/spacing", 0), "cloth.grid.spacing",
+                    "\"spacing\"");
 }
 
 TEST(SceneFields, PinOutsideTheGrid) {
   // The grid is 4 rows x 5 columns: column 5 and row 4 are one past the end.
-  expect_grid_error(with("[2, 3]", "[2, 5]"), "cloth.pins[1]", 6);
-  expect_grid_error(with("[2, 3]", "[4, 0]"), "cloth.pins[1]", 6);
-  expect_grid_error(with("[2, 3]", "[-1, 0]"), "cloth.pins[1]", 6);
-  expect_grid_error(with("[[0, 0], [2, 3]]", "[0, 20]"), "cloth.pins[1]", 6);
-  expect_grid_error(with("[[0, 0], [2, 3]]", "[-1]"), "cloth.pins[0]", 6);
+  const std::string pins = "\"pins\"";
+  expect_grid_error(grid_scene().pins({{0, 0}, {2, 5}}), "cloth.pins[1]", pins);
+  expect_grid_error(grid_scene().pins({{0, 0}, {4, 0}}), "cloth.pins[1]", pins);
+  expect_grid_error(grid_scene().pins({{0, 0}, {-1, 0}}), "cloth.pins[1]", pins);
+  expect_grid_error(grid_scene().pins({0, 20}), "cloth.pins[1]", pins);
+  expect_grid_error(grid_scene().pins(SceneBuilder::Json::array({-1})), "cloth.pins[0]", pins);
 }
 
 TEST(SceneFields, PinOutsideTheGridSaysWhy) {
-  const auto e = parse_error(with("[2, 3]", "[2, 5]"), scratch_path("pin.json"));
+  const auto e = parse_error(grid_scene().pins({{0, 0}, {2, 5}}).text(), scratch_path("pin.json"));
   ASSERT_TRUE(e);
   EXPECT_NE(std::string(e->what()).find("4x5"), std::string::npos) << e->what();
 }
 
 TEST(SceneFields, NodeMassMustBePositive) {
-  expect_grid_error(with("\"node_mass\": 0.01", "\"node_mass\": 0"), "material.node_mass", 8);
-  expect_grid_error(with("\"node_mass\": 0.01", "\"node_mass\": -0.01"), "material.node_mass", 8);
+  expect_grid_error(grid_scene().set("/material/node_mass", 0), "material.node_mass",
+                    "\"node_mass\"");
+  expect_grid_error(grid_scene().set("/material/node_mass", -0.01), "material.node_mass",
+                    "\"node_mass\"");
 }
 
 TEST(SceneFields, SpringConstantMustNotBeNegative) {
-  expect_grid_error(with("\"spring_constant\": 100.0", "\"spring_constant\": -1"),
-                    "material.spring_constant", 8);
+  expect_grid_error(grid_scene().set("/material/spring_constant", -1), "material.spring_constant",
+                    "\"spring_constant\"");
 }
 
 TEST(SceneFields, ZeroSpringConstantIsAllowed) {
-  const Scene scene = parse_scene(with("\"spring_constant\": 100.0", "\"spring_constant\": 0"),
-                                  scratch_path("zero_k.json"));
+  const Scene scene =
+      grid_scene().set("/material/spring_constant", 0).parse(scratch_path("zero_k.json"));
   EXPECT_EQ(scene.material.spring_constant, 0.0);
 }
 
 TEST(SceneFields, ViscosityMustNotBeNegative) {
-  expect_grid_error(with("\"viscosity\": 0.05", "\"viscosity\": -0.1"), "material.viscosity", 8);
+  expect_grid_error(grid_scene().set("/material/viscosity", -0.1), "material.viscosity",
+                    "\"viscosity\"");
 }
 
-// The issue's "friction < 0" case: a collider's friction comes from the material.
+// A collider's friction comes from the material: a negative one is refused there.
 TEST(SceneFields, FrictionMustNotBeNegative) {
-  expect_grid_error(with("\"viscosity\": 0.05", "\"viscosity\": 0.05, \"friction\": -0.1"),
-                    "material.friction", 8);
+  expect_grid_error(grid_scene().friction(-0.1), "material.friction", "\"friction\"");
 }
 
 TEST(SceneFields, TimeStepMustBePositive) {
-  expect_grid_error(with("\"dt\": 0.001", "\"dt\": 0"), "solver.dt", 10);
-  expect_grid_error(with("\"dt\": 0.001", "\"dt\": -0.001"), "solver.dt", 10);
+  expect_grid_error(grid_scene().set("/solver/dt", 0), "solver.dt", "\"dt\"");
+  expect_grid_error(grid_scene().set("/solver/dt", -0.001), "solver.dt", "\"dt\"");
 }
 
 TEST(SceneFields, GravityNeedsThreeNumbers) {
-  expect_grid_error(with("[0, -9.81, 0]", "[0, -9.81]"), "gravity", 9);
-  expect_grid_error(with("[0, -9.81, 0]", "[0, \"down\", 0]"), "gravity[1]", 9);
+  expect_grid_error(grid_scene().set("/gravity", {0, -9.81}), "gravity", "\"gravity\"");
+  expect_grid_error(grid_scene().set("/gravity", {0, "down", 0}), "gravity[1]", "\"gravity\"");
 }
 
 TEST(SceneFields, GridAndMeshAreExclusive) {
-  expect_grid_error(with(R"("springs")", R"("mesh": { "obj": "x.obj" }, "springs")"), "cloth", 3);
+  expect_grid_error(grid_scene().set("/cloth/mesh", {{"obj", "x.obj"}}), "cloth", "\"cloth\"");
 }
 
 TEST(SceneFields, UnknownSpringFamily) {
-  expect_grid_error(with("\"bend\"]", "\"bending\"]"), "cloth.springs[2]", 5);
+  expect_grid_error(grid_scene().springs({"structural", "shear", "bending"}), "cloth.springs[2]",
+                    "\"springs\"");
 }
 
 // Mesh scenes: the OBJ is resolved beside the scene file, so each test writes both.
@@ -387,17 +413,15 @@ class SceneMesh : public ::testing::Test {
  protected:
   std::string scene_path_ = scratch_path("mesh_scene.json");
 
-  static std::string mesh_scene(const std::string& obj) {
-    return "{\n  \"cloth\": { \"mesh\": { \"obj\": \"" + obj +
-           "\" } },\n"
-           "  \"material\": { \"spring_constant\": 10, \"node_mass\": 0.1, \"viscosity\": 0 }\n}\n";
+  static SceneBuilder mesh_scene(const std::string& obj) {
+    return SceneBuilder(1, 1, 0.1).mesh(obj).material(10, 0.1, 0);
   }
 
   // Parses a scene pointing at an OBJ with `obj_text`; returns the error and its OBJ path.
   std::optional<InputError> broken_obj(const std::string& name, const std::string& obj_text) {
     obj_path_ = scratch_path(name);
     write_file(obj_path_, obj_text);
-    return parse_error(mesh_scene(name), scene_path_);
+    return parse_error(mesh_scene(name).text(), scene_path_);
   }
 
   std::string obj_path_;
@@ -405,7 +429,7 @@ class SceneMesh : public ::testing::Test {
 
 TEST_F(SceneMesh, ValidMeshLoads) {
   write_file(scratch_path("triangle.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const Scene scene = parse_scene(mesh_scene("triangle.obj"), scene_path_);
+  const Scene scene = mesh_scene("triangle.obj").parse(scene_path_);
   EXPECT_EQ(scene.topology.rest_positions.size(), 3u);
   EXPECT_EQ(scene.topology.springs.size(), 3u);  // three edges, no interior edge to bend across
   EXPECT_EQ(scene.name, "mesh_scene");
@@ -414,7 +438,7 @@ TEST_F(SceneMesh, ValidMeshLoads) {
 TEST_F(SceneMesh, UnreadableObjNamesThePathTried) {
   const std::string missing = scratch_path("no_such_mesh.obj");
   fs::remove(missing);
-  const auto e = parse_error(mesh_scene("no_such_mesh.obj"), scene_path_);
+  const auto e = parse_error(mesh_scene("no_such_mesh.obj").text(), scene_path_);
   ASSERT_TRUE(e);
   // Not found beside the scene nor in assets/: the error names the path beside the scene.
   EXPECT_EQ(e->file(), missing);
@@ -449,22 +473,18 @@ TEST_F(SceneMesh, DegenerateFace) {
 
 TEST_F(SceneMesh, MeshPinsAreNodeIndicesNotRowCol) {
   write_file(scratch_path("triangle.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string text =
-      with(R"("obj": "triangle.obj" } },)", R"("obj": "triangle.obj" }, "pins": [[0, 0]] },)",
-           mesh_scene("triangle.obj"));
+  const std::string text = mesh_scene("triangle.obj").pins({{0, 0}}).text();
   const auto e = parse_error(text, scene_path_);
   ASSERT_TRUE(e);
-  expect_names(*e, scene_path_, "cloth.pins[0]", 2);
+  expect_names(*e, scene_path_, "cloth.pins[0]", line_of(text, "\"pins\""));
 }
 
 TEST_F(SceneMesh, MeshPinOutOfRange) {
   write_file(scratch_path("triangle.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string text =
-      with(R"("obj": "triangle.obj" } },)", R"("obj": "triangle.obj" }, "pins": [3] },)",
-           mesh_scene("triangle.obj"));
+  const std::string text = mesh_scene("triangle.obj").pins({3}).text();
   const auto e = parse_error(text, scene_path_);
   ASSERT_TRUE(e);
-  expect_names(*e, scene_path_, "cloth.pins[0]", 2);
+  expect_names(*e, scene_path_, "cloth.pins[0]", line_of(text, "\"pins\""));
 }
 
 }  // namespace

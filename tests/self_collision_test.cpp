@@ -16,6 +16,7 @@
 
 #include "modules/module_factories.h"
 #include "scene.h"
+#include "scene_builder.h"
 #include "self_collision_fixture.h"
 #include "test_support.h"
 
@@ -134,11 +135,6 @@ TEST(SelfCollision, FoldedLayersStayApartWithTheModule) {
   // The bottom layer is pinned: the module must not have moved it.
   for (int i : cloth.bottom)
     EXPECT_EQ(s.y[static_cast<std::size_t>(i)], 0.0);
-}
-
-TEST(SelfCollision, IsDeterministic) {
-  const FoldedCloth cloth;
-  EXPECT_EQ(test::state_hash(cloth.run(true, 0.3)), test::state_hash(cloth.run(true, 0.3)));
 }
 
 // A square grid in the x-z plane with the three spring families.
@@ -277,29 +273,20 @@ TEST(SelfCollision, AllocatesOnceAndReportsItsState) {
   EXPECT_EQ(state->bytes(), state_bytes);
 }
 
-const char* kScene = R"({
-  "name": "square",
-  "cloth": { "grid": { "rows": 5, "cols": 5, "spacing": 0.1 }, "springs": ["structural"],
-             "pins": [[0, 0]] },
-  "material": { "spring_constant": 100.0, "node_mass": 0.01, "viscosity": 0.05 },
-  "solver": { "integrator": "network", "dt": 0.001 }MODULES
-})";
-
-std::string scene_with(const std::string& modules) {
-  std::string s = kScene;
-  s.replace(s.find("MODULES"), 7, modules);
-  return s;
+// A 5 x 5 square of structural springs pinned at a corner.
+test::SceneBuilder square() {
+  return test::SceneBuilder(5, 5, 0.1).name("square").springs({"structural"}).pins({{0, 0}});
 }
 
 TEST(SelfCollision, PresentOnlyWhenDeclared) {
-  Simulation bare = parse_scene(scene_with(""), "square.json").make_simulation();
+  Simulation bare = square().parse("square.json").make_simulation();
   EXPECT_EQ(bare.module_count(), 0u);
   EXPECT_TRUE(bare.module_reports().empty());
 
-  Simulation with =
-      parse_scene(scene_with(R"(, "modules": [{ "type": "self_collision", "thickness": 0.02 }])"),
-                  "square.json")
-          .make_simulation();
+  Simulation with = square()
+                        .module({{"type", "self_collision"}, {"thickness", 0.02}})
+                        .parse("square.json")
+                        .make_simulation();
   ASSERT_EQ(with.module_count(), 1u);
   const auto reports = with.module_reports();
   ASSERT_EQ(reports.size(), 1u);

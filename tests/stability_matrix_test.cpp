@@ -1,4 +1,4 @@
-// Issue 6: the simulation stays sane at the extremes of every parameter.
+// The simulation stays sane at the extremes of every parameter.
 //   - The matrix (stability_probe.h): stiffness 1..1e7 N/m, node mass 1e-5..10 kg,
 //     dt 1e-5..0.1 s, viscosity 0..100, grids 2x2..128x128, every integrator,
 //     fixed and adaptive. Every run ends ok with a finite, checked state, or

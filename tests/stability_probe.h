@@ -13,7 +13,7 @@
 
 namespace neurocloth::stability {
 
-// One point of the parameter matrix (issue 6): the hanging cloth resized to
+// One point of the parameter matrix: the hanging cloth resized to
 // grid x grid nodes with this material and step.
 struct Corner {
   double stiffness;  // N/m, every spring family
@@ -55,7 +55,7 @@ struct RunSpec {
 //   "extremes": kHardCorner and kSoftCorner at large x large, except implicit
 //   at the hard corner: one frame fixed, not adaptive (matrix() says why).
 // Every run is bounded: at most frames * 2 * step_budget trial steps. `large`
-// is 128, the issue's largest grid, except under a sanitizer (tests say so).
+// is 128, the largest grid the matrix asks for, except under a sanitizer (tests say so).
 struct MatrixRun {
   const char* section;
   RunSpec spec;

@@ -1,4 +1,4 @@
-# Stability at the extremes (issue 6): the parameter matrix and run-time guards.
+# Stability at the extremes: the parameter matrix and run-time guards.
 # The matrix and the survey that prints docs/stability.md share stability_probe.cpp.
 add_executable(stability_tests stability_matrix_test.cpp step_budget_test.cpp
   stable_substeps_test.cpp stability_probe.cpp)

@@ -8,6 +8,7 @@
 
 #include "modules/module_factories.h"
 #include "scene.h"
+#include "scene_builder.h"
 #include "test_support.h"
 
 namespace neurocloth {
@@ -16,21 +17,15 @@ namespace {
 // A soft 12 x 12 cloth hanging from its whole top row: at rest its top springs
 // stretch by about 30%, so a 10% limit has work to do on every step.
 std::string hanging_scene(const std::string& integrator, const std::string& modules) {
-  return R"({
-  "cloth": {
-    "grid": { "rows": 12, "cols": 12, "spacing": 0.05, "origin": [0, 1, 0],
-              "row_direction": [0, -1, 0], "col_direction": [1, 0, 0] },
-    "springs": ["structural", "shear", "bend"],
-    "pins": [[0,0],[0,1],[0,2],[0,3],[0,4],[0,5],[0,6],[0,7],[0,8],[0,9],[0,10],[0,11]]
-  },
-  "material": { "spring_constant": 15.0, "bend_constant": 2.0, "node_mass": 0.01,
-                "viscosity": 0.05 },
-  "solver": { "integrator": ")" +
-         integrator + R"(", "dt": 0.001 },
-  "modules": [)" +
-         modules +
-         R"(]
-})";
+  return test::SceneBuilder(12, 12, 0.05)
+      .origin(Vec3(0, 1, 0))
+      .hanging()
+      .pin_top_row()
+      .material(15.0, 0.01, 0.05)
+      .set("/material/bend_constant", 2.0)
+      .solver(integrator, 0.001)
+      .modules("[" + modules + "]")
+      .text();
 }
 
 // Largest length / rest length over the springs of the given families.

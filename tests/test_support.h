@@ -50,21 +50,33 @@ inline ParameterId parameter(const std::string& text) {
   return *id;
 }
 
-// FNV-1a over the bits of every coordinate: equal hashes mean identical bits.
-inline std::uint64_t state_hash(const ClothState& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](double v) {
+// FNV-1a 64 over the bytes of each value, least significant first: the same
+// bits give the same hash on every machine whatever its byte order.
+struct Fnv1a {
+  std::uint64_t hash = 1469598103934665603ull;
+  void mix(std::uint64_t bits) {
+    for (int i = 0; i < 8; ++i) {
+      hash ^= (bits >> (8 * i)) & 0xffu;
+      hash *= 1099511628211ull;
+    }
+  }
+  void mix(double v) {
     std::uint64_t bits;
     std::memcpy(&bits, &v, sizeof bits);
-    for (int i = 0; i < 8; ++i) {
-      h ^= (bits >> (8 * i)) & 0xffu;
-      h *= 1099511628211ull;
-    }
-  };
-  for (const NodeArray* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz})
-    for (double v : *a)
-      mix(v);
-  return h;
+    mix(bits);
+  }
+  void mix(const ClothState& s) {
+    for (const NodeArray* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz})
+      for (double v : *a)
+        mix(v);
+  }
+};
+
+// The bits of every coordinate: equal hashes mean identical bits.
+inline std::uint64_t state_hash(const ClothState& s) {
+  Fnv1a h;
+  h.mix(s);
+  return h.hash;
 }
 
 inline Vec3 total_momentum(const ClothNetwork& net, const ClothState& s) {

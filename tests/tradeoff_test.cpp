@@ -118,6 +118,25 @@ TEST(TradeoffMetrics, ADivergedRunIsNotComplete) {
 
 // ---- the converged reference ----
 
+// What a test checks must not depend on how fast this machine is: its plans
+// get wall-time budgets no run of it comes near, so only the step counts and
+// error targets decide where a sweep or a reference stops. (The budgets
+// themselves are tested with one no run can meet.)
+constexpr double kUnboundedWallSeconds = 1e6;
+
+ReferencePlan unbounded_reference() {
+  ReferencePlan plan;
+  plan.budget_seconds = kUnboundedWallSeconds;
+  return plan;
+}
+
+TradeoffPlan unbounded_sweep() {
+  TradeoffPlan plan;
+  plan.reference = unbounded_reference();
+  plan.method_budget_seconds = kUnboundedWallSeconds;
+  return plan;
+}
+
 // One mass on one spring (k = 40 N/m, m = 0.1 kg, no damping), let go at rest
 // length: y(t) = y0 - (m g / k)(1 - cos(w t)).
 TEST(TradeoffReference, ConvergesOnTheOscillatorAndMatchesItsClosedForm) {
@@ -125,7 +144,8 @@ TEST(TradeoffReference, ConvergesOnTheOscillatorAndMatchesItsClosedForm) {
   const std::vector<double> times = sample_times(1.0, 4);
   const ErrorScale scale = error_scale(scene);
   const ConvergedReference ref =
-      converge_reference(scene, times, scale, first_step(scene, IntegratorKind::rk4, 0.25), {});
+      converge_reference(scene, times, scale, first_step(scene, IntegratorKind::rk4, 0.25),
+                         unbounded_reference());
   const ReferenceReport& r = ref.report;
   EXPECT_TRUE(r.met);
   EXPECT_EQ(r.stopped_by, "target");
@@ -152,7 +172,7 @@ TEST(TradeoffReference, UnreachableTargetStopsAtTheHalvingCapAndSaysSo) {
   const Scene scene = test::asset_scene("hanging");
   const std::vector<double> times = sample_times(0.05, 2);
   const ErrorScale scale = error_scale(scene);
-  ReferencePlan plan;
+  ReferencePlan plan = unbounded_reference();
   plan.target = 1e-30;  // below round-off: no step reaches it
   plan.max_halvings = 2;
   const ConvergedReference ref = converge_reference(scene, times, scale, 0.002, plan);
@@ -195,7 +215,7 @@ TEST(TradeoffReference, StartsPastTheStabilityBoundAndHalvesIntoIt) {
 
 TEST(TradeoffSweep, ErrorsShrinkAtEachIntegratorsOrder) {
   const Scene scene = test::asset_scene("hanging");
-  TradeoffPlan plan;
+  TradeoffPlan plan = unbounded_sweep();
   plan.seconds = 0.1;
   plan.samples = 2;
   plan.max_levels = 3;
@@ -240,7 +260,7 @@ TEST(TradeoffSweep, ErrorsShrinkAtEachIntegratorsOrder) {
 TEST(TradeoffSweep, AdaptiveSweepsItsSafetyAndSkipsEqualCaps) {
   // hanging's t_delta (1 ms) is below safety * bound for safety 1 and 1/2: one setting.
   const Scene scene = test::asset_scene("hanging");
-  TradeoffPlan plan;
+  TradeoffPlan plan = unbounded_sweep();
   plan.seconds = 0.05;
   plan.samples = 1;
   plan.max_levels = 3;

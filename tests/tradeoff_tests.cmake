@@ -1,4 +1,4 @@
-# Speed against accuracy (issue 6): the tradeoff sweep, its chart and the accuracy picker.
+# Speed against accuracy: the tradeoff sweep, its chart and the accuracy picker.
 add_executable(tradeoff_tests tradeoff_test.cpp trade_csv_test.cpp chart_test.cpp)
 target_link_libraries(tradeoff_tests PRIVATE neurocloth_core neurocloth_chart PkgConfig::CAIRO
   GTest::gtest_main)

@@ -1,12 +1,12 @@
 // `neurocloth-cli tradeoff`: measures what each integrator's accuracy costs on a
 // scene and writes the trade as CSV, a log-log chart and a Markdown summary.
-// All three are written to temporary names and renamed at the end, so a failure
-// leaves none of them behind (and no half-written one).
+// All three are made in memory first, so a failure to measure or draw leaves
+// the old files as they were; each is then written whole or not at all.
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "input_error.h"
 #include "scene.h"
+#include "text_file.h"
 #include "trade_chart.h"
 #include "tradeoff/accuracy_choice.h"
 #include "tradeoff/pareto_front.h"
@@ -24,20 +25,14 @@
 namespace neurocloth {
 namespace {
 
-void write_text(const std::string& path, const std::string& text, const std::string& target) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.flush();
-  if (!out) throw std::runtime_error(target + ": cannot write output file");
-}
-
 // Fails now, naming the file, if REPORT's folder cannot take a file: better
 // than after a minute of measuring.
 void check_writable(const std::string& report) {
   const std::string probe = report + ".csv.probe." + std::to_string(::getpid());
-  {
-    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("command line", "--out", report + ".csv: cannot write output file");
+  try {
+    write_file_atomically(probe, "");
+  } catch (const std::runtime_error&) {
+    throw InputError("command line", "--out", report + ".csv: cannot write output file");
   }
   std::remove(probe.c_str());
 }
@@ -89,22 +84,14 @@ int run_tradeoff(const TradeoffOptions& o) {
   std::fflush(stdout);
   const TradeTable trade = measure_trade(scene, o.scene, plan);
 
-  const std::string base = o.out, tmp = ".tmp." + std::to_string(::getpid());
-  const std::string csv = base + ".csv", png = base + ".png", md = base + ".md";
+  const std::string csv = o.out + ".csv", png = o.out + ".png", md = o.out + ".md";
   const std::string chart_name = png.substr(png.find_last_of('/') + 1);
-  try {
-    write_text(csv + tmp, trade_csv(trade), csv);
-    write_trade_chart(trade, png + tmp);
-    release_chart_caches();  // the one chart of this process is drawn
-    write_text(md + tmp, trade_summary(trade, chart_name), md);
-    for (const std::string& f : {csv, png, md})
-      if (std::rename((f + tmp).c_str(), f.c_str()) != 0)
-        throw std::runtime_error(f + ": cannot move output file into place");
-  } catch (...) {
-    for (const std::string& f : {csv, png, md})
-      std::remove((f + tmp).c_str());
-    throw;
-  }
+  std::ostringstream chart;
+  write_trade_chart(trade, chart, png);
+  release_chart_caches();  // the one chart of this process is drawn
+  write_file_atomically(csv, trade_csv(trade));
+  write_file_atomically(png, chart.str());
+  write_file_atomically(md, trade_summary(trade, chart_name));
 
   const ReferenceReport& r = trade.reference;
   std::printf("reference: rk4 dt = %.4g s, last halving changed %.3g of the size (target %g %s)\n",

@@ -7,7 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <ostream>
 #include <stdexcept>
+
+#include "text_file.h"
 
 namespace neurocloth {
 namespace {
@@ -60,6 +63,13 @@ void centred_text(cairo_t* cr, const std::string& s, double x, double y) {
   cairo_show_text(cr, s.c_str());
 }
 
+// cairo's PNG encoder hands its bytes here as it makes them.
+cairo_status_t append_to_stream(void* closure, const unsigned char* data, unsigned int length) {
+  auto& out = *static_cast<std::ostream*>(closure);
+  out.write(reinterpret_cast<const char*>(data), std::streamsize(length));
+  return out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
 }  // namespace
 
 LogLogChart::LogLogChart(ChartSpec spec) : spec_(std::move(spec)) {
@@ -90,6 +100,10 @@ std::pair<double, double> LogLogChart::to_pixel(double x, double y) const {
 }
 
 void LogLogChart::write_png(const std::string& path) const {
+  write_file_atomically(path, [&](std::ostream& out) { write_png(out, path); });
+}
+
+void LogLogChart::write_png(std::ostream& out, const std::string& path) const {
   if (spec_.width < kLeft + kLegendWidth + 100 || spec_.height < kTop + kBottom + 100)
     throw std::runtime_error(path + ": the chart is too small to draw");
   Surface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, spec_.width, spec_.height),
@@ -249,7 +263,8 @@ void LogLogChart::write_png(const std::string& path) const {
   if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error(
         path + ": cannot draw the chart: " + cairo_status_to_string(cairo_status(cr)));
-  const cairo_status_t written = cairo_surface_write_to_png(surface.get(), path.c_str());
+  const cairo_status_t written =
+      cairo_surface_write_to_png_stream(surface.get(), append_to_stream, &out);
   if (written != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error(path + ": cannot write the chart: " + cairo_status_to_string(written));
 }

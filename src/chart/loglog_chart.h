@@ -3,6 +3,7 @@
 // decade ticks and labels, one coloured line with markers per series, some
 // points ringed (a Pareto front, say), dashed horizontal rules, a legend and a
 // title. Knows nothing of cloth; trade_chart.h feeds it.
+#include <iosfwd>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,7 +55,10 @@ class LogLogChart {
   int y_hi() const { return y_hi_; }
   const ChartSpec& spec() const { return spec_; }
 
-  // Throws std::runtime_error naming `path` when cairo cannot draw or write it.
+  // The chart as PNG bytes on `out`. Throws std::runtime_error naming `name`
+  // (the file the bytes are for) when cairo cannot draw or encode it.
+  void write_png(std::ostream& out, const std::string& name) const;
+  // The chart as the PNG file `path`, whole or not at all (write_file_atomically).
   void write_png(const std::string& path) const;
 
   // The plot area, in pixels.

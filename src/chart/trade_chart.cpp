@@ -57,6 +57,10 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
   return spec;
 }
 
+void write_trade_chart(const TradeTable& trade, std::ostream& out, const std::string& name) {
+  LogLogChart(trade_chart_spec(trade)).write_png(out, name);
+}
+
 void write_trade_chart(const TradeTable& trade, const std::string& path) {
   LogLogChart(trade_chart_spec(trade)).write_png(path);
 }

@@ -3,6 +3,7 @@
 // second, log-log, one line per method (in cost order), the Pareto front
 // ringed and joined, the reference's resolution as a dashed rule when it did
 // not reach its target.
+#include <iosfwd>
 #include <string>
 
 #include "loglog_chart.h"
@@ -15,7 +16,10 @@ Rgb method_colour(const std::string& method);
 
 ChartSpec trade_chart_spec(const TradeTable& trade);
 
-// Throws std::runtime_error naming `path` when it cannot be written.
+// The chart as PNG bytes on `out`. Throws std::runtime_error naming `name`
+// (the file the bytes are for) when it cannot be drawn.
+void write_trade_chart(const TradeTable& trade, std::ostream& out, const std::string& name);
+// The chart as the PNG file `path`, whole or not at all.
 void write_trade_chart(const TradeTable& trade, const std::string& path);
 
 }  // namespace neurocloth

@@ -25,7 +25,7 @@ struct SpringSpec {
 struct ClothTopology {
   std::vector<Vec3> rest_positions;
   std::vector<SpringSpec> springs;
-  std::vector<std::array<std::int32_t, 3>> triangles;  // for rendering and wind later
+  std::vector<std::array<std::int32_t, 3>> triangles;  // for rendering and wind
   int rows = 0;                                        // grid shape; 0 for meshes
   int cols = 0;
 };

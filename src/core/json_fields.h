@@ -1,7 +1,7 @@
 #pragma once
 // Typed, checked reads from a JSON document, every failure an InputError naming
-// the file, the field and (via JsonLocator) its line. Used by the scene reader
-// and, later, every other JSON input.
+// the file, the field and (via JsonLocator) its line. Every JSON input is read
+// through it: scenes, material presets, scripts.
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>

@@ -1,7 +1,8 @@
 #pragma once
 // The physical parameters a material gives the network (paper: "spring
-// constant, mass, viscosity and friction force"). The fuzzy system will derive
-// these from linguistic descriptions; a scene may also state them directly.
+// constant, mass, viscosity and friction force"). The fuzzy system derives them
+// from linguistic descriptions (fuzzy_material.h); a scene may also state them
+// directly.
 namespace neurocloth {
 
 struct Material {

@@ -1,8 +1,11 @@
 #include "text_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -49,23 +52,44 @@ std::string read_text_file(const std::string& path, const char* what, std::size_
   return text;
 }
 
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write) {
+  // mkstemp: a name no other writer (thread or process) of the same path uses.
+  std::string tmp = path + ".XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0)
+    throw std::runtime_error(path + ": cannot write output file (" + std::strerror(errno) + ")");
+  // Whatever fails from here on (the stream, the encoder in `write`, the disk)
+  // takes the temporary file with it. The descriptor stays open to fsync the
+  // bytes the stream wrote: the rename must not reach the disk before they do.
+  struct Temporary {
+    int fd;
+    const std::string& name;
+    bool moved = false;
+    ~Temporary() {
+      if (fd >= 0) ::close(fd);
+      if (!moved) std::remove(name.c_str());
+    }
+  } temporary{fd, tmp};
+  ::fchmod(fd, 0644);  // mkstemp makes it private; an output is for everyone to read
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(path + ": cannot write output file");
-    out << text;
+    write(out);
     out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": error while writing output file");
-    }
+    if (!out) throw std::runtime_error(path + ": error while writing output file");
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot move output file into place");
-  }
+  if (::fsync(fd) != 0)
+    throw std::runtime_error(path + ": error while writing output file (" +
+                             std::strerror(errno) + ")");
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(path + ": cannot move output file into place (" +
+                             std::strerror(errno) + ")");
+  temporary.moved = true;
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&text](std::ostream& out) { out << text; });
 }
 
 }  // namespace neurocloth

@@ -4,6 +4,8 @@
 // refuses a directory, a device that never ends (/dev/zero) and a file too
 // large for what it claims to be, with the file named, before any parsing.
 #include <cstddef>
+#include <functional>
+#include <iosfwd>
 #include <string>
 
 namespace neurocloth {
@@ -14,6 +16,7 @@ inline constexpr std::size_t kMaxSceneBytes = 16u << 20;    // JSON scenes, pres
 inline constexpr std::size_t kMaxRuleBaseBytes = 4u << 20;  // FCL rule bases
 inline constexpr std::size_t kMaxMeshBytes = 256u << 20;    // OBJ meshes
 inline constexpr std::size_t kMaxTableBytes = 64u << 20;    // trade CSVs
+inline constexpr std::size_t kMaxShaderBytes = 1u << 20;    // GLSL sources
 
 // The file's bytes. Throws InputError naming `path` when it cannot be opened,
 // is a directory, or holds more than `max_bytes` (read up to the limit only,
@@ -21,9 +24,14 @@ inline constexpr std::size_t kMaxTableBytes = 64u << 20;    // trade CSVs
 // messages ("scene file", "FCL file").
 std::string read_text_file(const std::string& path, const char* what, std::size_t max_bytes);
 
-// Writes `text` to `path` through a temporary file in the same folder, renamed
-// into place: a crash or a full disk leaves the old file or none, never a
-// truncated one. Throws std::runtime_error naming `path`.
+// Writes `path` through a temporary file in the same folder, flushed to disk
+// and renamed into place: a crash, a full disk or an encoder that fails leaves
+// the old file or none, never a truncated one. `write` streams the content
+// (text, or an encoder's bytes: PNG through libpng or cairo); an exception it
+// throws, or a stream it leaves failed, removes the temporary file. Throws
+// std::runtime_error naming `path`, or rethrows what `write` threw.
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace neurocloth

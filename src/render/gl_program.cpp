@@ -1,18 +1,14 @@
 #include "gl_program.h"
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "text_file.h"
 
 namespace neurocloth {
 namespace {
 
 std::string read_shader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read the shader");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_text_file(path, "shader", kMaxShaderBytes);
 }
 
 // The stage's source with the snippets spliced in after its first line (#version).

@@ -3,7 +3,7 @@
 // fixed set of seeds. The fuzzy engine is written once over a scalar type T and
 // run with T = double to infer, or T = Dual to get exact derivatives of every
 // output with respect to the inputs, the membership-function parameters and the
-// consequents in the same pass (the later neuro-fuzzy tuning needs them).
+// consequents in the same pass (what tuning the rule base by gradient needs).
 #include <algorithm>
 #include <cmath>
 #include <vector>
