@@ -164,8 +164,9 @@ TEST(ColliderDrape, ClothFallsOverASphere) {
   const Vec3 c(0, 0.3, 0);
   const double r = 0.25;
   const int n = 16;
-  Simulation sim = simulate(sheet(n, 1.0, 0.7).solver("network", 0.02, true).module(
-      {{"type", "sphere"}, {"center", xyz(c)}, {"radius", r}}));
+  Simulation sim = simulate(sheet(n, 1.0, 0.7)
+                                .solver("network", 0.02, true)
+                                .module({{"type", "sphere"}, {"center", xyz(c)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 2.0, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
@@ -179,8 +180,10 @@ TEST(ColliderDrape, ClothFoldsOverACapsuleBar) {
   const Vec3 a(-0.7, 0.3, 0), b(0.7, 0.3, 0);
   const double r = 0.05;
   const int n = 16;
-  Simulation sim = simulate(sheet(n, 1.0, 0.45).solver("network", 0.02, true).module(
-      {{"type", "capsule"}, {"a", xyz(a)}, {"b", xyz(b)}, {"radius", r}}));
+  Simulation sim =
+      simulate(sheet(n, 1.0, 0.45)
+                   .solver("network", 0.02, true)
+                   .module({{"type", "capsule"}, {"a", xyz(a)}, {"b", xyz(b)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return segment_distance(p, a, b) - r; };
   run_outside(sim, 2.0, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the bar";
@@ -194,8 +197,10 @@ TEST(ColliderDrape, ClothFoldsOverACapsuleBar) {
 // A cloth falls flat onto a tilted floor with high friction and lies on it.
 TEST(ColliderDrape, ClothLandsOnAPlaneAndLiesOnIt) {
   const Vec3 normal = Vec3(0.1, 1, 0).normalized();
-  Simulation sim = simulate(sheet(10, 0.5, 0.2).solver("network", 0.02, true).module(
-      {{"type", "plane"}, {"normal", {0.1, 1, 0}}, {"friction", 0.8}}));
+  Simulation sim =
+      simulate(sheet(10, 0.5, 0.2)
+                   .solver("network", 0.02, true)
+                   .module({{"type", "plane"}, {"normal", {0.1, 1, 0}}, {"friction", 0.8}}));
   run_outside(sim, 1.5, 0.1, [&](const Vec3& p) { return normal.dot(p); });
   const ClothState& s = sim.state();
   for (std::size_t i = 0; i < s.size(); ++i)
@@ -209,8 +214,10 @@ class ColliderIntegrators : public ::testing::TestWithParam<const char*> {};
 TEST_P(ColliderIntegrators, KeepNodesOutsideASphere) {
   const Vec3 c(0, 0, 0);
   const double r = 0.2;
-  Simulation sim = simulate(sheet(8, 0.6, 0.3).solver(GetParam(), 0.02, true).module(
-      {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}}));
+  Simulation sim =
+      simulate(sheet(8, 0.6, 0.3)
+                   .solver(GetParam(), 0.02, true)
+                   .module({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 1.5, 0.1, distance);
   EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
@@ -319,7 +326,8 @@ TEST(ColliderTunnelling, FastNodeLandsOnTheBoxTop) {
          {Vec3(0, 0, 0), Vec3(0.37, 0, 0), Vec3(-0.38, 0, 0.2), Vec3(0.39, 0, -0.39)}) {
       Simulation sim = fast_node(xz + Vec3(0, 0.8, 0), Vec3(0, -10, 0), kTable, integrator);
       sim.advance(0.04);
-      EXPECT_NEAR(sim.state().y[0], 0.75 + kThickness, 1e-12) << integrator << " at " << xz.transpose();
+      EXPECT_NEAR(sim.state().y[0], 0.75 + kThickness, 1e-12)
+          << integrator << " at " << xz.transpose();
       sim.advance(0.96);
       const Vec3 p = sim.state().position(0);
       EXPECT_NEAR(p.y(), 0.75 + kThickness, 1e-12) << integrator << " at " << xz.transpose();

@@ -81,9 +81,10 @@ TEST(Determinism, EveryShippedSceneUnderEveryIntegratorMatchesItsStoredHash) {
   }
   const Hashes stored =
       nlohmann::json::parse(read_text_file(kHashFile, "hash file", kMaxSceneBytes)).get<Hashes>();
-  const std::string how = "\n  (an intended change to the numerics: rerun with "
-                          "NEUROCLOTH_UPDATE_HASHES=1, review and commit " +
-                          kHashFile + "; docs/testing.md)";
+  const std::string how =
+      "\n  (an intended change to the numerics: rerun with "
+      "NEUROCLOTH_UPDATE_HASHES=1, review and commit " +
+      kHashFile + "; docs/testing.md)";
   for (const auto& [scene, by_integrator] : measured)
     for (const auto& [integrator, hash] : by_integrator) {
       const auto s = stored.find(scene);

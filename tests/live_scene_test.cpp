@@ -275,6 +275,18 @@ TEST(LiveScene, ABrokenSceneOrRuleBaseLeavesTheRunAsItWas) {
                        "only a scene whose material is a rule base"));
 }
 
+// A scene the sender read is taken as it is (the path is not read again), and
+// the status shares it with the UI.
+TEST(LiveScene, ASceneSentAlongIsNotReadAgain) {
+  LiveScene live(test::asset_scene("hanging"));
+  auto flag = std::make_shared<const Scene>(test::asset_scene("flag"));
+  EXPECT_EQ(live.apply(LoadScene{"/nonexistent/flag.json", flag}), "");
+  EXPECT_EQ(live.scene().name, "flag");
+  SimulationStatus status;
+  live.describe(status);
+  EXPECT_EQ(status.scene, flag);
+}
+
 TEST(LiveScene, NewRulesReplaceTheRuleBase) {
   LiveScene live(test::asset_scene("hanging_fuzzy"));
   const std::string path = assets_directory() + "/materials/cloth.fcl";

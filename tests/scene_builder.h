@@ -56,9 +56,9 @@ class SceneBuilder {
     return set("/cloth/pins", pins);
   }
   SceneBuilder& material(double spring_constant, double node_mass, double viscosity) {
-    return set("/material", {{"spring_constant", spring_constant},
-                             {"node_mass", node_mass},
-                             {"viscosity", viscosity}});
+    return set(
+        "/material",
+        {{"spring_constant", spring_constant}, {"node_mass", node_mass}, {"viscosity", viscosity}});
   }
   SceneBuilder& friction(double friction) { return set("/material/friction", friction); }
   SceneBuilder& gravity(const Vec3& g) { return set("/gravity", vec(g)); }
@@ -100,10 +100,10 @@ class SceneBuilder {
   static Json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
   static void write(std::string& out, const Json& v, int depth) {
-    const bool spread =
-        depth < 2 && !v.empty() && (v.is_object() || std::any_of(v.begin(), v.end(), [](const Json& e) {
-                        return e.is_structured();
-                      }));
+    const bool spread = depth < 2 && !v.empty() &&
+                        (v.is_object() || std::any_of(v.begin(), v.end(), [](const Json& e) {
+                           return e.is_structured();
+                         }));
     if (!spread) {
       out += v.dump();
       return;

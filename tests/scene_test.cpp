@@ -53,8 +53,7 @@ void expect_grid_error(const std::string& text, const std::string& field, int li
 }
 
 // The error names `field` on the line where `at` stands in the scene's text.
-void expect_grid_error(const SceneBuilder& scene, const std::string& field,
-                       const std::string& at) {
+void expect_grid_error(const SceneBuilder& scene, const std::string& field, const std::string& at) {
   const std::string text = scene.text();
   expect_grid_error(text, field, line_of(text, at));
 }

@@ -35,15 +35,17 @@ struct Outcome {
 };
 
 Outcome outcome(const Simulation& s) {
-  return {test::state_hash(s.state()), s.time(), s.steps(), s.rejected_steps(),
-          s.force_evaluations(), s.status()};
+  return {test::state_hash(s.state()), s.time(),  s.steps(), s.rejected_steps(),
+          s.force_evaluations(),       s.status()};
 }
 
 constexpr double kFirst = 0.04, kSecond = 0.04;  // s of simulated time before and after the copy
 
 // Everything a step reads that is not the cloth's positions: an external force
 // on one node (state), and the live parameters of the model.
-void drive(Simulation& s) { s.set_external_force(s.network().node_count() / 2, Vec3(0.01, 0, 0)); }
+void drive(Simulation& s) {
+  s.set_external_force(s.network().node_count() / 2, Vec3(0.01, 0, 0));
+}
 
 class SimulationCopy : public ::testing::TestWithParam<std::string> {};
 
@@ -101,7 +103,8 @@ TEST(SimulationCopy, LiveChangesOnACopyStayOnIt) {
   Simulation copy = original;
   bool changed = false;
   for (std::size_t k = 0; k < copy.network().force_modules.size(); ++k)
-    changed |= copy.set_module_parameter(k, ParameterId::module(0, ModuleParameter::velocity, 0), 25.0);
+    changed |=
+        copy.set_module_parameter(k, ParameterId::module(0, ModuleParameter::velocity, 0), 25.0);
   ASSERT_TRUE(changed) << "the flag's wind takes velocity.x";
   copy.mutable_network().gravity = Vec3(0, -3, 0);
   copy.set_external_force(0, Vec3(1, 2, 3));

@@ -143,9 +143,8 @@ TEST(TradeoffReference, ConvergesOnTheOscillatorAndMatchesItsClosedForm) {
   const Scene scene = test::asset_scene("spring_mass");
   const std::vector<double> times = sample_times(1.0, 4);
   const ErrorScale scale = error_scale(scene);
-  const ConvergedReference ref =
-      converge_reference(scene, times, scale, first_step(scene, IntegratorKind::rk4, 0.25),
-                         unbounded_reference());
+  const ConvergedReference ref = converge_reference(
+      scene, times, scale, first_step(scene, IntegratorKind::rk4, 0.25), unbounded_reference());
   const ReferenceReport& r = ref.report;
   EXPECT_TRUE(r.met);
   EXPECT_EQ(r.stopped_by, "target");

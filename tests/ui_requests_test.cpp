@@ -67,7 +67,11 @@ TEST(UiRequests, ABadSceneIsNamedAndNotPosted) {
   EXPECT_TRUE(posted.commands.empty());
   EXPECT_EQ(request_scene(scene_asset("hanging"), posted.sink()), "");
   ASSERT_EQ(posted.commands.size(), 1u);
-  EXPECT_TRUE(std::holds_alternative<LoadScene>(posted.commands[0]));
+  ASSERT_TRUE(std::holds_alternative<LoadScene>(posted.commands[0]));
+  // The scene read here travels with the command: the thread does not read it again.
+  const LoadScene& load = std::get<LoadScene>(posted.commands[0]);
+  ASSERT_NE(load.scene, nullptr);
+  EXPECT_EQ(load.scene->name, "hanging");
 }
 
 TEST(UiRequests, RulesNeedALinguisticMaterial) {

@@ -114,7 +114,7 @@ void ViewerApp::follow(const SimulationStatus& status, const FrameSnapshot& snap
   if (key != scene_info_key_ && !status.scene_path.empty()) {
     scene_info_key_ = key;  // tried once: a failure is shown, not retried every frame
     try {
-      scene_info_ = SceneInfo(load_scene(status.scene_path));
+      scene_info_ = SceneInfo(status.scene ? *status.scene : load_scene(status.scene_path));
       if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
     } catch (const std::exception& e) {
       messages_.error = e.what();

@@ -10,7 +10,9 @@ class ExplicitEuler final : public Integrator {
  public:
   explicit ExplicitEuler(const ClothNetwork& net) : acc_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::explicit_euler; }
-  std::unique_ptr<Integrator> clone() const override { return std::make_unique<ExplicitEuler>(*this); }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<ExplicitEuler>(*this);
+  }
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
 

@@ -10,8 +10,9 @@
 // beyond their rest force; the next step turns that into runaway energy. So
 // every step checks its linearisation against the forces where it landed and,
 // where it did not hold, walks the step in pieces small enough that it does
-// (the step controller's Table 1 rule, with the step as its cap). Where it holds — every ordinary cloth and step — the result is the
-// single step, bit for bit, at the cost of one more force evaluation.
+// (the step controller's Table 1 rule, with the step as its cap). Where it holds — every ordinary
+// cloth and step — the result is the single step, bit for bit, at the cost of one more force
+// evaluation.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,7 +37,9 @@ class ImplicitEuler final : public Integrator {
         force_a_(net.node_count()),
         force_b_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::implicit_euler; }
-  std::unique_ptr<Integrator> clone() const override { return std::make_unique<ImplicitEuler>(*this); }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<ImplicitEuler>(*this);
+  }
   int order() const override { return 1; }
   double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
 

@@ -11,7 +11,9 @@ namespace {
 class NetworkPropagation final : public Integrator {
  public:
   IntegratorKind kind() const override { return IntegratorKind::network; }
-  std::unique_ptr<Integrator> clone() const override { return std::make_unique<NetworkPropagation>(*this); }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<NetworkPropagation>(*this);
+  }
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
   bool steps_in_place() const override { return true; }

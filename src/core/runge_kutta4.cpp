@@ -10,7 +10,9 @@ class RungeKutta4 final : public Integrator {
   explicit RungeKutta4(const ClothNetwork& net)
       : stage_(net.node_count()), acc_(net.node_count()), force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::rk4; }
-  std::unique_ptr<Integrator> clone() const override { return std::make_unique<RungeKutta4>(*this); }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<RungeKutta4>(*this);
+  }
   int order() const override { return 4; }
   double stability_limit() const override { return 2.78; }  // imaginary-axis limit 2*sqrt(2)
 

@@ -68,8 +68,8 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       states_{initial, initial},
       checkpoint_(initial),
       monitor_(net_, initial, settings.divergence),
-      integrator_(make_integrator(settings.integrator, net_,
-                                  settings.adaptive_settings.min_step_fraction)),
+      integrator_(
+          make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction)),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
   if (initial.size() != net_.node_count())
@@ -352,7 +352,8 @@ bool Simulation::adaptive_frame(double frame_end) {
     if (former_force_ < 0) former_force_ = net_.max_net_force(forces_[force_front_]);
     const double tried = tc.trial(std::numeric_limits<double>::infinity());
     const double h = tc.trial(frame_end - time_);
-    const StepReport r = integrator_->step(net_, inputs_, front(), forces_[force_front_], h, back());
+    const StepReport r =
+        integrator_->step(net_, inputs_, front(), forces_[force_front_], h, back());
     constrain(front(), back(), h);
     NodeVectors& landed = forces_[1 - force_front_];
     net_.net_forces(back(), inputs_, landed);

@@ -201,8 +201,8 @@ class Simulation {
   std::array<NodeVectors, 2> forces_;  // forces_[force_front_] = net_forces(state()) when valid
   int force_front_ = 0;
   bool front_forces_valid_ = false;
-  double cap_ = -1;           // cached step cap; < 0 means stale
-  double former_force_ = -1;  // max |sum f| at the current state; < 0 means unknown
+  double cap_ = -1;                        // cached step cap; < 0 means stale
+  double former_force_ = -1;               // max |sum f| at the current state; < 0 means unknown
   std::vector<double> bound_k_, bound_d_;  // scratch of the stability bound
 
   // Diagnostics and callbacks: no step result depends on them.

@@ -80,8 +80,8 @@ void write_file_atomically(const std::string& path,
     if (!out) throw std::runtime_error(path + ": error while writing output file");
   }
   if (::fsync(fd) != 0)
-    throw std::runtime_error(path + ": error while writing output file (" +
-                             std::strerror(errno) + ")");
+    throw std::runtime_error(path + ": error while writing output file (" + std::strerror(errno) +
+                             ")");
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error(path + ": cannot move output file into place (" +
                              std::strerror(errno) + ")");

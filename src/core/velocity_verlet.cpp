@@ -11,7 +11,9 @@ class VelocityVerlet final : public Integrator {
   explicit VelocityVerlet(const ClothNetwork& net)
       : acc_(net.node_count()), force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::verlet; }
-  std::unique_ptr<Integrator> clone() const override { return std::make_unique<VelocityVerlet>(*this); }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<VelocityVerlet>(*this);
+  }
   int order() const override { return 2; }
   double stability_limit() const override { return 2.0; }
 

@@ -36,9 +36,8 @@ void write_png(const std::string& path, const std::vector<std::uint8_t>& rgba, i
   const std::string message = ok ? "" : image.message;
   png_image_free(&image);
   if (!ok) throw std::runtime_error(path + ": writing the PNG failed (" + message + ")");
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(encoded.data(), std::streamsize(size));
-  });
+  write_file_atomically(
+      path, [&](std::ostream& out) { out.write(encoded.data(), std::streamsize(size)); });
 }
 
 std::vector<std::uint8_t> read_png(const std::string& path, int& width, int& height) {

@@ -60,17 +60,20 @@ Simulation live_simulation(Scene scene) {
 }  // namespace
 
 // Built in one piece so that a scene that fails to load or build replaces
-// nothing. The Simulation is constructed in place from live_simulation()'s
-// result and never moved: it holds pointers into itself (front and back buffers).
+// nothing.
 struct LiveScene::Run {
-  Scene scene;
+  // The scene as it was loaded, shared with whoever asks (the UI builds its
+  // view of the scene from it, not from the file again).
+  std::shared_ptr<const Scene> loaded;
+  Scene scene;  // what runs: LoadRules replaces its rule base
   Simulation sim;
   ParameterNames names;
   std::vector<ParameterRange> ranges;
   std::shared_ptr<const SceneGeometry> geometry;
 
-  explicit Run(Scene s)
-      : scene(std::move(s)),
+  explicit Run(std::shared_ptr<const Scene> s)
+      : loaded(std::move(s)),
+        scene(*loaded),
         sim(live_simulation(scene)),
         names(parameter_names(scene)),
         ranges(parameter_ranges(scene)),
@@ -95,7 +98,7 @@ struct LiveScene::Run {
 };
 
 LiveScene::LiveScene(Scene scene, bool paused) : paused_(paused) {
-  start(std::make_unique<Run>(std::move(scene)));
+  start(std::make_unique<Run>(std::make_shared<const Scene>(std::move(scene))));
 }
 
 LiveScene::~LiveScene() = default;
@@ -341,12 +344,13 @@ std::string LiveScene::on(const Advance& c) {
 }
 
 std::string LiveScene::on(const Reset&) {
-  start(std::make_unique<Run>(run_->scene));
+  start(std::make_unique<Run>(std::make_shared<const Scene>(run_->scene)));
   return {};
 }
 
 std::string LiveScene::on(const LoadScene& c) {
-  start(std::make_unique<Run>(load_scene(c.path)));
+  start(
+      std::make_unique<Run>(c.scene ? c.scene : std::make_shared<const Scene>(load_scene(c.path))));
   return {};
 }
 
@@ -391,6 +395,7 @@ void LiveScene::describe(SimulationStatus& s) {
   const ClothNetwork& net = sim.network();
   s.scene_name = run_->scene.name;
   s.scene_path = run_->scene.path;
+  s.scene = run_->loaded;
   s.run = sim.status();
   s.divergence_reason = sim.divergence_reason();
   s.time = sim.time();

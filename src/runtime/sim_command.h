@@ -13,6 +13,8 @@
 
 namespace neurocloth {
 
+struct Scene;
+
 // One number (parameter_id.h says which there are), checked against
 // parameter_ranges(). A linguistic input is ramped in; the others take effect
 // at the next step.
@@ -63,6 +65,9 @@ struct Advance {
 struct Reset {};  // the scene's initial state and parameters
 struct LoadScene {
   std::string path;  // on failure the running scene keeps going; the error is reported
+  // The scene read from `path` by whoever sends this (the UI reads it to check
+  // it): the thread takes it as it is. Null: the thread reads `path`.
+  std::shared_ptr<const Scene> scene = nullptr;
 };
 struct LoadRules {
   std::string path;  // an FCL rule base for the current linguistic material

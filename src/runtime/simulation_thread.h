@@ -32,6 +32,7 @@ const ParameterRange* find_range(const std::vector<ParameterRange>& ranges, cons
 
 struct SimulationStatus {
   std::string scene_name, scene_path;
+  std::shared_ptr<const Scene> scene;  // as loaded (before any LoadRules), shared: no copy
   RunStatus run = RunStatus::ok;
   std::string divergence_reason;
   double time = 0;  // simulated s

@@ -67,12 +67,13 @@ std::string request_accuracy(const SceneInfo& scene, UiValues& values, const Com
 }
 
 std::string request_scene(const std::string& path, const CommandSink& post) {
+  std::shared_ptr<const Scene> scene;
   try {
-    load_scene(path);
+    scene = std::make_shared<const Scene>(load_scene(path));
   } catch (const std::exception& e) {
     return e.what();
   }
-  post(LoadScene{path});
+  post(LoadScene{path, std::move(scene)});
   return "";
 }
 

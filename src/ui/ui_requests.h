@@ -29,8 +29,8 @@ std::string request_accuracy(const SceneInfo& scene, UiValues& values, const Com
                              double accuracy);
 
 // Reads the scene file here (so a bad one is named at once), then posts
-// LoadScene; the simulation loads it itself and keeps the running scene on
-// failure. Returns the error, or "" when posted.
+// LoadScene with the scene read: the file is read once. Returns the error, or
+// "" when posted.
 std::string request_scene(const std::string& path, const CommandSink& post);
 
 // Reads the rule base here, installs it in `scene`'s FuzzyView and posts

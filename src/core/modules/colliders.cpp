@@ -201,8 +201,8 @@ class Collider final : public ConstraintModule {
   const char* type() const override { return type_; }
   Phase phase() const override { return ConstraintModule::contact; }
 
-  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before, ClothState& after,
-             ModuleState*) const override {
+  void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
+             ClothState& after, ModuleState*) const override {
     const std::size_t n = after.size();
     const double reach = spec_.thickness + kTouch;
     const double *bx = before.x, *by = before.y, *bz = before.z;
