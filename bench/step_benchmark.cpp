@@ -44,6 +44,13 @@ void BM_MeshStep(benchmark::State& st) {
 }
 BENCHMARK(BM_MeshStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 
+// The same mesh with its file's vertices shuffled: what renumbering the nodes
+// at load (mesh_node_order.h) wins back against BM_MeshStep/N.
+void BM_ShuffledMeshStep(benchmark::State& st) {
+  time_steps(st, bare_shuffled_mesh_cloth(static_cast<int>(st.range(0))), IntegratorKind::network);
+}
+BENCHMARK(BM_ShuffledMeshStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
+
 // The reference the brief measures against: a straightforward scalar loop over
 // springs (array of structs, sqrt and a division, scatter-adds) plus the same
 // semi-implicit Euler node update. Same cloth, same arithmetic, no layout work.

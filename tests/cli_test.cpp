@@ -1,7 +1,14 @@
 // Runs neurocloth-cli as a user would: a real process, real files, exit codes.
 #include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <vector>
 
 #include "cli_fixture.h"
+#include "grid_builder.h"
+#include "mesh_node_order.h"
+#include "obj_mesh_writer.h"
 
 namespace neurocloth::cli_test {
 namespace {
@@ -372,6 +379,62 @@ TEST_F(Cli, BenchRejectsSizesAndCountsBeyondItsLimits) {
     EXPECT_EQ(r.code, kInputError) << option << ": " << r.err;
     EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
   }
+}
+
+// A mesh's nodes are renumbered at load when its file scatters neighbours, and
+// that must not show: the same grid written row by row and with its vertices
+// shuffled, pinned and moved by file index, ends with the same positions for
+// the same vertices in RESULT.json (to rounding: the sums run in other orders).
+TEST_F(Cli, AShuffledMeshGivesTheSameResultByFileIndex) {
+  GridSpec g;
+  g.rows = g.cols = 16;
+  g.spacing = 0.05;
+  const ClothTopology grid = build_grid(g);
+  const int n = static_cast<int>(grid.rest_positions.size());
+  std::vector<std::int32_t> order(n);  // shuffled vertex k is grid node order[k]
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(12));
+  std::vector<int> vertex_of(n);
+  for (int k = 0; k < n; ++k)
+    vertex_of[order[k]] = k;
+  write_obj_mesh(grid, (dir_ / "rows.obj").string());
+  write_obj_mesh(renumbered(grid, order), (dir_ / "shuffled.obj").string());
+
+  // Hung from its two top corners, the middle of its top edge drawn aside.
+  const auto scene = [&](const std::string& obj, const std::vector<int>& vertex) {
+    const json doc = {
+        {"cloth",
+         {{"mesh", {{"obj", obj}}},
+          {"springs", {"structural", "bend"}},
+          {"pins", {vertex[0], vertex[15]}}}},
+        {"material",
+         {{"spring_constant", 200.0}, {"node_mass", 0.01}, {"viscosity", 0.05}, {"friction", 0}}},
+        {"modules",
+         {{{"type", "pin_motion"},
+           {"nodes", {vertex[7], vertex[8]}},
+           {"keyframes",
+            {{{"t", 0.0}, {"offset", {0, 0, 0}}}, {{"t", 0.3}, {"offset", {0.1, 0, 0}}}}}}}},
+        {"gravity", {0, -9.81, 0}},
+        {"solver", {{"integrator", "network"}, {"dt", 0.001}, {"adaptive", false}}}};
+    return write(obj + ".json", doc.dump());
+  };
+  std::vector<int> identity(n);
+  std::iota(identity.begin(), identity.end(), 0);
+  const auto positions = [&](const std::string& path) {
+    const Outcome r = run({"simulate", path, "--seconds", "0.3", "--out", result_path()});
+    EXPECT_EQ(r.code, kOk) << r.err;
+    return read_result().at("positions");
+  };
+  const json rows = positions(scene("rows.obj", identity));
+  const json shuffled = positions(scene("shuffled.obj", vertex_of));
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(n));
+  ASSERT_EQ(shuffled.size(), static_cast<std::size_t>(n));
+  // The pinned corners stayed, the moved pins went: the pins held the same vertices.
+  EXPECT_NEAR(rows[7][0].get<double>(), 0.35 + 0.1, 1e-12);
+  for (int k = 0; k < n; ++k)
+    for (int axis = 0; axis < 3; ++axis)
+      EXPECT_NEAR(shuffled[k][axis].get<double>(), rows[order[k]][axis].get<double>(), 1e-9)
+          << "file vertex " << k << " (grid node " << order[k] << "), axis " << axis;
 }
 
 }  // namespace

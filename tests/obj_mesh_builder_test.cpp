@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <optional>
+#include <random>
 #include <set>
 #include <string>
 #include <utility>
@@ -15,6 +17,7 @@
 
 #include "grid_builder.h"
 #include "input_error.h"
+#include "mesh_node_order.h"
 #include "obj_mesh_writer.h"
 #include "scene.h"
 #include "spring_layer.h"
@@ -303,20 +306,7 @@ TEST(ObjMesh, APentagonBecomesThreeTriangles) {
   EXPECT_EQ(count(t, SpringFamily::structural), 7);  // 5 sides, 2 diagonals
 }
 
-// A grid cloth renumbered: node k of the result is node order[k] of `t`.
-ClothTopology renumbered(const ClothTopology& t, const std::vector<int>& order) {
-  std::vector<int> index_of(order.size());
-  ClothTopology r;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    index_of[order[k]] = static_cast<int>(k);
-    r.rest_positions.push_back(t.rest_positions[order[k]]);
-  }
-  for (const auto& tri : t.triangles)
-    r.triangles.push_back({index_of[tri[0]], index_of[tri[1]], index_of[tri[2]]});
-  return r;
-}
-
-ClothTopology grid_mesh(int n, const std::vector<int>& order = {}) {
+ClothTopology grid_mesh(int n, const std::vector<std::int32_t>& order = {}) {
   GridSpec g;
   g.rows = g.cols = n;
   g.spacing = 0.05;
@@ -328,17 +318,39 @@ ClothTopology grid_mesh(int n, const std::vector<int>& order = {}) {
 
 // A grid written as an OBJ file row by row gives its springs in runs about a
 // row long, as the grid builder does: the force loop vectorises (spring_layer.h).
-TEST(ObjMesh, AGridMeshFormsLongRuns) {
-  const ClothTopology t = grid_mesh(32);
+// Springs per run, as the spring layer forms runs from the builder's order.
+double mean_run(const ClothTopology& t) {
   SpringLayer layer;
   for (const SpringSpec& s : t.springs) {
     layer.node_a.push_back(s.a);
     layer.node_b.push_back(s.b);
   }
   layer.rebuild_runs();
-  const double mean_run =
-      static_cast<double>(layer.size()) / static_cast<double>(layer.runs.size());
-  EXPECT_GT(mean_run, 24.0) << layer.size() << " springs in " << layer.runs.size() << " runs";
+  return static_cast<double>(layer.size()) / static_cast<double>(layer.runs.size());
+}
+
+// A vertex order that scatters neighbours, the same on every run.
+std::vector<std::int32_t> shuffled_order(int vertices) {
+  std::vector<std::int32_t> order(static_cast<std::size_t>(vertices));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  return order;
+}
+
+TEST(ObjMesh, AGridMeshFormsLongRuns) {
+  const ClothTopology t = grid_mesh(32);
+  EXPECT_GT(mean_run(t), 24.0) << t.springs.size() << " springs";
+  EXPECT_TRUE(t.numbering.identity()) << "a mesh in row order keeps the file's order";
+}
+
+// Shuffled, the same grid has no runs in its file's order; renumbered at load
+// it has them back, about a level of the breadth-first order long (the
+// levels run across the grid's diagonal: 1 to 32 nodes and back; in the
+// file's order a run is about one spring).
+TEST(ObjMesh, AShuffledGridMeshIsRenumberedIntoLongRuns) {
+  const ClothTopology t = grid_mesh(32, shuffled_order(32 * 32));
+  EXPECT_FALSE(t.numbering.identity());
+  EXPECT_GT(mean_run(t), 10.0) << t.springs.size() << " springs";
 }
 
 // An independent count of what the builder must produce: every triangle edge
@@ -346,7 +358,7 @@ TEST(ObjMesh, AGridMeshFormsLongRuns) {
 // spring between their other corners; found by comparing every pair of
 // triangles, in a mesh whose vertex order scatters neighbours.
 TEST(ObjMesh, EveryEdgeOnceAndABendAcrossEverySharedEdge) {
-  std::vector<int> order(36);
+  std::vector<std::int32_t> order(36);
   for (int k = 0; k < 36; ++k)
     order[k] = (k * 7) % 36;  // 7 is prime to 36: a permutation
   const ClothTopology t = grid_mesh(6, order);
@@ -375,20 +387,22 @@ TEST(ObjMesh, EveryEdgeOnceAndABendAcrossEverySharedEdge) {
   EXPECT_EQ(built, expected);
 }
 
-// Node k is the file's vertex k + 1 whatever the order of the vertices: pins,
-// pin_motion and RESULT.json count nodes as the file counts its vertices.
-TEST(ObjMesh, NodesKeepTheFilesVertexOrder) {
-  std::vector<int> order(25);
-  for (int k = 0; k < 25; ++k)
-    order[k] = 24 - k;
+// Node k may be any node, but the numbering says which file vertex it is:
+// pins, pin_motion and RESULT.json count nodes as the file counts its vertices.
+TEST(ObjMesh, TheNumberingNamesEachNodesFileVertex) {
   GridSpec g;
-  g.rows = g.cols = 5;
+  g.rows = g.cols = 12;
   g.spacing = 0.05;
   const ClothTopology grid = build_grid(g);
-  const ClothTopology t = grid_mesh(5, order);
-  ASSERT_EQ(t.rest_positions.size(), 25u);
-  for (int k = 0; k < 25; ++k)
-    EXPECT_LT((t.rest_positions[k] - grid.rest_positions[order[k]]).norm(), 1e-15) << "node " << k;
+  const std::vector<std::int32_t> order = shuffled_order(144);
+  const ClothTopology t = grid_mesh(12, order);
+  ASSERT_EQ(t.rest_positions.size(), 144u);
+  ASSERT_FALSE(t.numbering.identity());
+  for (int k = 0; k < 144; ++k) {
+    EXPECT_EQ(t.numbering.source(t.numbering.node(k)), k);
+    EXPECT_LT((t.rest_positions[t.numbering.node(k)] - grid.rest_positions[order[k]]).norm(), 1e-15)
+        << "file vertex " << k;
+  }
 }
 
 // /dev/zero never ends: refused as a device, not read until memory runs out.

@@ -32,8 +32,8 @@ int run_relax(const RelaxOptions& o) {
   doc["nodes"] = net.node_count();
   doc["springs"] = net.spring_count();
   doc["energy"] = energy_json(net.energy(state));
-  doc["positions"] = state_json(state, false);
-  doc["velocities"] = state_json(state, true);
+  doc["positions"] = state_json(state, scene.topology.numbering, false);
+  doc["velocities"] = state_json(state, scene.topology.numbering, true);
   write_json_atomically(o.out, doc);
 
   if (r.free_nodes == 0)

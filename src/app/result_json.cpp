@@ -2,9 +2,10 @@
 
 namespace neurocloth {
 
-nlohmann::json state_json(const ClothState& s, bool velocities) {
+nlohmann::json state_json(const ClothState& s, const NodeNumbering& numbering, bool velocities) {
   nlohmann::json a = nlohmann::json::array();
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const auto i = static_cast<std::size_t>(numbering.node(static_cast<int>(k)));
     const Vec3 v = velocities ? s.velocity(i) : s.position(i);
     a.push_back({v.x(), v.y(), v.z()});
   }
@@ -19,8 +20,8 @@ nlohmann::json energy_json(const Energy& e) {
           {"gravity", e.gravity}};
 }
 
-nlohmann::json simulation_result(const Simulation& sim, const std::string& scene_path,
-                                 double wall_seconds) {
+nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& numbering,
+                                 const std::string& scene_path, double wall_seconds) {
   const SolverSettings& s = sim.settings();
   nlohmann::json doc;
   doc["status"] = to_string(sim.status());
@@ -55,8 +56,8 @@ nlohmann::json simulation_result(const Simulation& sim, const std::string& scene
   }
   doc["modules"] = modules;
   doc["module_seconds"] = module_seconds;
-  doc["positions"] = state_json(sim.state(), false);
-  doc["velocities"] = state_json(sim.state(), true);
+  doc["positions"] = state_json(sim.state(), numbering, false);
+  doc["velocities"] = state_json(sim.state(), numbering, true);
   return doc;
 }
 

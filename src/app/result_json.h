@@ -10,11 +10,13 @@
 
 namespace neurocloth {
 
-// status, time, steps, energy, positions, velocities... of a simulation.
-nlohmann::json simulation_result(const Simulation& sim, const std::string& scene_path,
-                                 double wall_seconds);
-// Positions and velocities as arrays of [x, y, z].
-nlohmann::json state_json(const ClothState& s, bool velocities);
+// status, time, steps, energy, positions, velocities... of a simulation whose
+// nodes are the file's vertices as `numbering` says (the scene's topology's).
+nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& numbering,
+                                 const std::string& scene_path, double wall_seconds);
+// Positions or velocities as arrays of [x, y, z], in the file's vertex order:
+// entry k is the file's vertex k + 1 whatever order the nodes are in.
+nlohmann::json state_json(const ClothState& s, const NodeNumbering& numbering, bool velocities);
 nlohmann::json energy_json(const Energy& e);
 
 }  // namespace neurocloth

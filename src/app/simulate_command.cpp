@@ -118,7 +118,7 @@ int run_simulate(const SimulateOptions& o) {
   const LongRunOutcome run = run_long(sim, o.seconds, {o.progress});
   sim.check_now();  // the result is checked in full, whatever the cadence
   const double wall = run.wall_seconds;
-  nlohmann::json result = simulation_result(sim, o.scene, wall);
+  nlohmann::json result = simulation_result(sim, scene.topology.numbering, o.scene, wall);
   if (accuracy) result["accuracy"] = accuracy_json(*accuracy);
   result["seconds_asked"] = o.seconds;
   result["interrupted"] = run.interrupted;

@@ -21,6 +21,9 @@ Scene bare_cloth(int n);
 // folder that is removed again, and built by build_obj_mesh: structural springs
 // on the triangles' edges, bend springs across them (no shear family).
 Scene bare_mesh_cloth(int n);
+// The same with the OBJ file's vertices shuffled (a fixed seed): a mesh whose
+// file scatters neighbours, renumbered at load (mesh_node_order.h).
+Scene bare_shuffled_mesh_cloth(int n);
 
 // Steps a scene's cloth by the benchmarks' one rule: fixed steps of half the
 // semi-implicit Euler bound (L = 2) whatever the integrator, so every

@@ -23,6 +23,12 @@ json place(int node, const FrameSnapshot& snapshot) {
   return at;
 }
 
+// The index the user knows `node` by: its vertex in the scene's mesh file
+// (a grid's nodes are already in that order). -1 (missed the cloth) stays.
+int shown(int node, const FrameSnapshot& snapshot) {
+  return node >= 0 ? snapshot.geometry->numbering.source(node) : node;
+}
+
 json status_json(const SimulationStatus& s) {
   json inputs = json::object();
   for (const auto& [name, value] : s.material_inputs)
@@ -59,19 +65,21 @@ json status_json(const SimulationStatus& s) {
 }  // namespace
 
 void ViewerReport::picked(int node, double x, double y, const FrameSnapshot& snapshot) {
-  picks_.push_back({{"node", node}, {"pixel", {x, y}}, {"time", snapshot.time}});
-  if (node >= 0) drags_.push_back({{"node", node}, {"press", place(node, snapshot)}});
+  picks_.push_back({{"node", shown(node, snapshot)}, {"pixel", {x, y}}, {"time", snapshot.time}});
+  if (node >= 0)
+    drags_.push_back({{"node", shown(node, snapshot)}, {"press", place(node, snapshot)}});
 }
 
 void ViewerReport::released(int node, const Vec3& target, const FrameSnapshot& snapshot) {
-  if (!drags_.empty() && drags_.back()["node"] == node) {
+  if (!drags_.empty() && drags_.back()["node"] == shown(node, snapshot)) {
     drags_.back()["release"] = place(node, snapshot);
     drags_.back()["target"] = vec(target);
   }
 }
 
 void ViewerReport::pinned(int node, bool pinned, const FrameSnapshot& snapshot) {
-  pins_.push_back({{"node", node}, {"pinned", pinned}, {"at", place(node, snapshot)}});
+  pins_.push_back(
+      {{"node", shown(node, snapshot)}, {"pinned", pinned}, {"at", place(node, snapshot)}});
 }
 
 void ViewerReport::parameter(double t, const std::string& name, double value,
@@ -81,10 +89,13 @@ void ViewerReport::parameter(double t, const std::string& name, double value,
   sets_.push_back(set);
 }
 
-void ViewerReport::probe(double t, int node, const FrameSnapshot& snapshot) {
+void ViewerReport::probe(double t, int vertex, const FrameSnapshot& snapshot) {
+  const bool exists =
+      vertex >= 0 && static_cast<std::size_t>(vertex) < snapshot.geometry->node_count;
+  const int node = exists ? snapshot.geometry->numbering.node(vertex) : -1;
   json p = place(node, snapshot);
   p["t"] = t;
-  p["node"] = node;
+  p["node"] = vertex;
   if (node >= 0 && static_cast<std::size_t>(node) < snapshot.pinned.size())
     p["pinned"] = snapshot.pinned[node] != 0;
   probes_.push_back(p);

@@ -13,16 +13,19 @@
 
 namespace neurocloth {
 
+// The report names nodes as the scene does: by their vertex in a mesh's file
+// (SceneGeometry::numbering), whatever order the simulation keeps them in.
 class ViewerReport {
  public:
-  // A left press: `node` is -1 when it missed the cloth.
+  // A left press on simulation node `node`: -1 when it missed the cloth.
   void picked(int node, double x, double y, const FrameSnapshot& snapshot);
   // `target`: where the cursor pulled the node last.
   void released(int node, const Vec3& target, const FrameSnapshot& snapshot);
   void pinned(int node, bool pinned, const FrameSnapshot& snapshot);
   // A set request; `refusal` is empty when it was posted.
   void parameter(double t, const std::string& name, double value, const std::string& refusal);
-  void probe(double t, int node, const FrameSnapshot& snapshot);
+  // A script's probe of the file's `vertex` (node index as scenes count them).
+  void probe(double t, int vertex, const FrameSnapshot& snapshot);
   void screenshot(const std::string& path, int width, int height);
   void error(double t, const std::string& message);
 

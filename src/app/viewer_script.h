@@ -33,7 +33,7 @@ struct ScriptEvent {
   int key = 0;          // key: a GLFW key code
   double amount = 0;    // scroll: wheel steps (> 0 zooms in); set: the value
   std::string name;     // set: parameter name; screenshot / load: path
-  int node = -1;        // probe: node whose position goes into the report
+  int node = -1;        // probe: node (as scenes count: a mesh's file vertex) to report
   bool panels = false;  // screenshot: the whole window, controls included
 };
 

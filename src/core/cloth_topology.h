@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "node_numbering.h"
 #include "vec3.h"
 
 namespace neurocloth {
@@ -28,6 +29,8 @@ struct ClothTopology {
   std::vector<std::array<std::int32_t, 3>> triangles;  // for rendering and wind
   int rows = 0;                                        // grid shape; 0 for meshes
   int cols = 0;
+  // Which file vertex each node is, when a mesh's nodes were renumbered.
+  NodeNumbering numbering;
 };
 
 // Which spring families a builder creates.

@@ -11,6 +11,7 @@ std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene) {
   g->scene_name = scene.name;
   g->triangles = scene.topology.triangles;
   g->node_count = scene.topology.rest_positions.size();
+  g->numbering = scene.topology.numbering;
   for (const SpringSpec& s : scene.topology.springs) {
     g->spring_a.push_back(s.a);
     g->spring_b.push_back(s.b);

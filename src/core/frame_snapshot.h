@@ -27,6 +27,7 @@ struct SceneGeometry {
   std::vector<float> rest_length;     // m, per spring (for the strain colour map)
   std::vector<ModuleSpec> colliders;  // PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec only
   std::size_t node_count = 0;
+  NodeNumbering numbering;  // the file's vertex of each node: what the user is shown
 };
 
 struct FrameSnapshot {

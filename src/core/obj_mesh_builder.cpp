@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "input_error.h"
+#include "mesh_node_order.h"
 #include "stencil_order.h"
 #include "text_file.h"
 
@@ -240,9 +241,11 @@ ClothTopology build_obj_mesh(const ObjMeshSpec& spec) {
                            SpringFamily::bend});
     }
   }
-  // Nodes keep the file's vertex order (pins, pin_motion and RESULT.json speak
-  // of vertices); only the springs move, into runs where the mesh is regular.
+  // Springs into runs where the mesh is regular; nodes into an order that gives
+  // runs if the file's does not. Users still count nodes as the file counts
+  // its vertices (t.numbering).
   sort_into_stencil_runs(t.springs);
+  order_nodes_for_runs(t);
   return t;
 }
 

@@ -112,8 +112,9 @@ void check_extent(const JsonFields& in, const ClothTopology& t, const std::strin
     const Vec3& p = t.rest_positions[i];
     for (int k = 0; k < 3; ++k)
       if (!limits::kCoordinate.contains(p[k]))
-        in.fail(field, "node " + std::to_string(i) + " lands at " + "xyz"[k] + " = " +
-                           show_number(p[k]) + " m: " + limits::kCoordinate.meaning);
+        in.fail(field, "node " + std::to_string(t.numbering.source(static_cast<int>(i))) +
+                           " lands at " + "xyz"[k] + " = " + show_number(p[k]) +
+                           " m: " + limits::kCoordinate.meaning);
   }
 }
 

@@ -18,6 +18,14 @@ bool continues(const SpringSpec& previous, const SpringSpec& s) {
   return s.family == previous.family && s.a == previous.a + 1 && s.b == previous.b + 1;
 }
 
+// Where the stretch of springs[first] ends.
+std::size_t stretch_end(const std::vector<SpringSpec>& springs, std::size_t first) {
+  std::size_t end = first + 1;
+  while (end < springs.size() && continues(springs[end - 1], springs[end]))
+    ++end;
+  return end;
+}
+
 }  // namespace
 
 void sort_into_stencil_runs(std::vector<SpringSpec>& springs) {
@@ -27,9 +35,7 @@ void sort_into_stencil_runs(std::vector<SpringSpec>& springs) {
   std::vector<SpringSpec> ordered, scattered;
   ordered.reserve(springs.size());
   for (std::size_t first = 0; first < springs.size();) {
-    std::size_t end = first + 1;
-    while (end < springs.size() && continues(springs[end - 1], springs[end]))
-      ++end;
+    const std::size_t end = stretch_end(springs, first);
     auto& into = end - first >= kMinStencilRun ? ordered : scattered;
     into.insert(into.end(), springs.begin() + static_cast<std::ptrdiff_t>(first),
                 springs.begin() + static_cast<std::ptrdiff_t>(end));
@@ -40,6 +46,16 @@ void sort_into_stencil_runs(std::vector<SpringSpec>& springs) {
   });
   ordered.insert(ordered.end(), scattered.begin(), scattered.end());
   springs = std::move(ordered);
+}
+
+std::size_t springs_in_stencil_runs(const std::vector<SpringSpec>& springs) {
+  std::size_t in_runs = 0;
+  for (std::size_t first = 0; first < springs.size();) {
+    const std::size_t end = stretch_end(springs, first);
+    if (end - first >= kMinStencilRun) in_runs += end - first;
+    first = end;
+  }
+  return in_runs;
 }
 
 }  // namespace neurocloth

@@ -27,7 +27,8 @@ void forces_panel(PanelContext& ctx) {
     ImGui::TextDisabled("no wind module in this scene");
   }
   for (const FrameSnapshot::AppliedForce& f : ctx.snapshot.forces)
-    ImGui::Text("drag on node %d: %.3g N", f.node, f.force.norm());
+    ImGui::Text("drag on node %d: %.3g N", ctx.snapshot.geometry->numbering.source(f.node),
+                f.force.norm());
 }
 
 }  // namespace neurocloth

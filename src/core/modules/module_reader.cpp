@@ -218,13 +218,13 @@ int read_node_ref(const JsonFields& in, const json& v, const std::string& f,
     if (r < 0 || r >= t.rows || c < 0 || c >= t.cols)
       in.fail(f, "[" + std::to_string(r) + ", " + std::to_string(c) + "] is outside the " +
                      std::to_string(t.rows) + "x" + std::to_string(t.cols) + " grid");
-    return r * t.cols + c;
+    return t.numbering.node(r * t.cols + c);
   }
   const int node = in.integer(v, f);
   if (node < 0 || node >= nodes)
     in.fail(f, "node " + std::to_string(node) + " does not exist (the cloth has " +
                    std::to_string(nodes) + " nodes)");
-  return node;
+  return t.numbering.node(node);
 }
 
 std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& modules,
