@@ -1,0 +1,90 @@
+#pragma once
+// The learning stage's objective (paper eq. 18-19): the squared distance between
+// the network's node positions and a reference motion, summed over the frames
+// and the observed nodes, as a function of the network's weights, with its
+// exact gradient by back-propagation through time (rollout.h, step_adjoint.h).
+//
+// The unknowns form one vector theta in blocks: a family value (the spring
+// constant, one number) or, per element, one weight per spring or node (the
+// paper's weights). Positive quantities are held as their logarithm, so a
+// descent step can never make a mass or a stiffness negative and a factor of 3
+// off is the same distance either way.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "reference_motion.h"
+#include "scene.h"
+
+namespace neurocloth {
+
+struct FitSettings {
+  // Parameter names (docs/learning.md): spring_constant, shear_constant,
+  // bend_constant, viscosity, node_mass, rest_length, friction, and module
+  // parameters (air_drag.rate, wind.velocity.x, wind.drag, plane.friction, ...).
+  std::vector<std::string> params = {"spring_constant", "viscosity"};
+  // One unknown per spring (stiffness, damping, rest length) or node (mass)
+  // instead of one per family. Module parameters stay one number each.
+  bool per_element = false;
+  // Strength of the smoothness regulariser on per-element weights:
+  // smoothness * 1/2 sum over neighbouring elements of (log w_i - log w_j)^2.
+  double smoothness = 0;
+  // The tape's memory budget: above it the forward pass keeps only every K-th
+  // state and the backward pass recomputes each segment (rollout.h).
+  std::size_t tape_budget_bytes = std::size_t(512) << 20;
+};
+
+// One block of theta.
+struct FitBlock {
+  std::string name;       // "spring_constant", "wind.velocity.x", ...
+  std::size_t offset = 0; // into theta
+  std::size_t count = 1;  // 1, or one per spring / node with per_element
+  bool log_space = true;  // theta holds log(value)
+  std::string unit;       // "N/m", "kg", ...
+};
+
+class FitProblem {
+ public:
+  // Throws InputError (field "--params" or the reference's file) with one line
+  // when the scene or the parameters cannot be fitted: an integrator or a module
+  // without an adjoint, a parameter the scene does not have, a reference frame
+  // after... (see docs/learning.md).
+  FitProblem(const Scene& scene, const ReferenceMotion& reference, const FitSettings& settings);
+  ~FitProblem();
+  FitProblem(FitProblem&&) noexcept;
+
+  std::size_t size() const;  // number of unknowns
+  const std::vector<FitBlock>& blocks() const;
+  // The scene's own values, in theta's coordinates: where a fit starts.
+  Eigen::VectorXd initial() const;
+  // The values theta stands for (exp of the log-space blocks).
+  Eigen::VectorXd values(const Eigen::VectorXd& theta) const;
+
+  // E(theta) = sum_frames sum_observed 1/2 |p_k(t) - y_k(t)|^2 (m^2), plus the
+  // regulariser; fills `gradient` (dE/dtheta, exact) when not null. NaN when
+  // the forward run produced a non-finite state (then the gradient is NaN too).
+  double loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient);
+  // Root-mean-square distance (m) at theta, from the data term alone.
+  double rms_error(const Eigen::VectorXd& theta);
+  std::size_t observations() const;  // observed node positions (3-vectors)
+  double duration() const;           // simulated seconds (the last frame's time)
+  // Largest tape (checkpoints and one segment) the last loss() held, bytes.
+  std::size_t peak_tape_bytes() const;
+
+  // The scene with theta's family values written into its material and
+  // modules (the material becomes numeric). Per-element blocks are not in it:
+  // see element_weights.
+  Scene fitted_scene(const Eigen::VectorXd& theta) const;
+  // Per-element weights at theta (network order), for the side file; empty
+  // vectors for what was not fitted per element.
+  MaterialWeights element_weights(const Eigen::VectorXd& theta) const;
+  std::vector<double> element_rest_lengths(const Eigen::VectorXd& theta) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace neurocloth
