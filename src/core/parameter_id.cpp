@@ -11,20 +11,15 @@ namespace {
 // The module types that have live parameters, and what those are called in text.
 struct LiveModuleParameter {
   const char* type;
-  const char* name;
   ModuleParameter parameter;
 };
 constexpr LiveModuleParameter kModuleParameters[] = {
-    {"wind", "velocity", ModuleParameter::velocity},
+    {"wind", ModuleParameter::velocity},
 };
 
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
-const char* name_of(ModuleParameter p) {
-  for (const LiveModuleParameter& m : kModuleParameters)
-    if (m.parameter == p) return m.name;
-  return "?";
-}
+}  // namespace
 
 // "wind" for the first module of its type, "wind[k]" for the k-th after it:
 // a scene with one wind module (all the shipped ones) never shows an index.
@@ -34,11 +29,29 @@ std::string module_name(const ParameterNames& names, int index) {
   return same == 0 ? type : type + "[" + std::to_string(same) + "]";
 }
 
+namespace {
+
 bool valid(const std::vector<std::string>& list, int index) {
   return index >= 0 && static_cast<std::size_t>(index) < list.size();
 }
 
 }  // namespace
+
+const char* module_parameter_name(ModuleParameter p) {
+  switch (p) {
+    case ModuleParameter::velocity:
+      return "velocity";
+    case ModuleParameter::rate:
+      return "rate";
+    case ModuleParameter::drag:
+      return "drag";
+    case ModuleParameter::lift:
+      return "lift";
+    case ModuleParameter::friction:
+      return "friction";
+  }
+  return "?";
+}
 
 // Fields a kind does not use take no part: gravity.x is gravity.x whatever its index says.
 bool operator==(const ParameterId& a, const ParameterId& b) {
@@ -114,7 +127,8 @@ std::string to_string(const ParameterId& id, const ParameterNames& names) {
       return "input." + names.inputs[id.index];
     case ParameterId::Kind::module:
       if (!valid(names.modules, id.index)) return "module#" + std::to_string(id.index);
-      return module_name(names, id.index) + "." + name_of(id.parameter) + suffix;
+      return module_name(names, id.index) + "." + module_parameter_name(id.parameter) +
+             (id.parameter == ModuleParameter::velocity ? suffix : std::string());
   }
   return "?";
 }

@@ -15,10 +15,22 @@ namespace neurocloth {
 struct Scene;
 
 // A number a module lets change between steps (SceneModule::set_parameter).
-// Each is a vector, changed one axis at a time.
+// A vector is changed one axis at a time; a scalar has axis -1. Only the wind's
+// velocity is a live control in the window; learning may adapt all of them.
 enum class ModuleParameter {
   velocity,  // wind: the mean air velocity, m/s
+  rate,      // air_drag: 1/s
+  drag,      // wind: drag coefficient
+  lift,      // wind: lift coefficient
+  friction,  // a collider's own kinetic Coulomb coefficient
 };
+inline constexpr int kModuleParameterSlots = 7;  // velocity x, y, z, rate, drag, lift, friction
+// Where a module parameter's gradient goes in a module's slots (learning).
+inline int module_slot(ModuleParameter p, int axis) {
+  return p == ModuleParameter::velocity ? axis : 2 + static_cast<int>(p);
+}
+// "velocity", "rate", ...: the text after a module's name.
+const char* module_parameter_name(ModuleParameter p);
 
 struct ParameterId {
   enum class Kind {
@@ -59,6 +71,10 @@ struct ParameterNames {
   std::vector<std::string> modules;  // the modules' types, in the scene's order
 };
 ParameterNames parameter_names(const Scene& scene);
+
+// How text names module `index`: "wind" for the first module of its type,
+// "wind[1]" for the second.
+std::string module_name(const ParameterNames& names, int index);
 
 // Every parameter the names allow, in the order a list of them is shown:
 // viscosity, friction, dt, gravity.x|y|z, input.NAME..., then module parameters.

@@ -38,11 +38,11 @@ struct FitSettings {
 
 // One block of theta.
 struct FitBlock {
-  std::string name;       // "spring_constant", "wind.velocity.x", ...
-  std::size_t offset = 0; // into theta
-  std::size_t count = 1;  // 1, or one per spring / node with per_element
-  bool log_space = true;  // theta holds log(value)
-  std::string unit;       // "N/m", "kg", ...
+  std::string name;        // "spring_constant", "wind.velocity.x", ...
+  std::size_t offset = 0;  // into theta
+  std::size_t count = 1;   // 1, or one per spring / node with per_element
+  bool log_space = true;   // theta holds log(value)
+  std::string unit;        // "N/m", "kg", ...
 };
 
 class FitProblem {

@@ -17,9 +17,9 @@ namespace neurocloth {
 
 // One observed instant: node k of `nodes` was at positions[k] (m).
 struct ReferenceFrame {
-  double time = 0;                   // s from the scene's start
-  std::vector<std::int32_t> nodes;   // file indices, each once per frame
-  std::vector<Vec3> positions;       // one per entry of `nodes`
+  double time = 0;                  // s from the scene's start
+  std::vector<std::int32_t> nodes;  // file indices, each once per frame
+  std::vector<Vec3> positions;      // one per entry of `nodes`
 };
 
 struct ReferenceMotion {

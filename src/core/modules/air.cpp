@@ -20,6 +20,16 @@ class AirDrag final : public ForceModule {
   explicit AirDrag(const AirDragSpec& spec) : rate_(spec.rate) {}
   const char* type() const override { return "air_drag"; }
   std::shared_ptr<ForceModule> clone() const override { return std::make_shared<AirDrag>(*this); }
+  bool has_adjoint() const override { return true; }
+  bool set_parameter(const ParameterId& id, double value) override {
+    if (id.parameter != ModuleParameter::rate) return false;
+    rate_ = value;
+    return true;
+  }
+  std::optional<double> parameter(const ParameterId& id) const override {
+    if (id.parameter != ModuleParameter::rate) return std::nullopt;
+    return rate_;
+  }
 
   void add_forces(const ClothNetwork& net, const ForceInputs&, const ClothState& s,
                   NodeVectors& F) const override {
@@ -38,6 +48,25 @@ class AirDrag final : public ForceModule {
       for (std::size_t i = 0; i < n; ++i)
         fc[i] -= rate_ * vc[i] / w[i];
     }
+  }
+
+  // F_i = -rate v_i / w_i: linear in v, in the rate and in the mass.
+  void add_forces_adjoint(const ClothNetwork& net, const ForceInputs&, const ClothState& s,
+                          const NodeVectors& adj_force, ClothState& adj, double* adj_inverse_mass,
+                          double* params) const override {
+    const std::size_t n = net.node_count();
+    const double* w = net.masses.inverse_mass.data();
+    double rate_gradient = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double lx = adj_force.x[i], ly = adj_force.y[i], lz = adj_force.z[i];
+      adj.vx[i] -= rate_ * lx / w[i];
+      adj.vy[i] -= rate_ * ly / w[i];
+      adj.vz[i] -= rate_ * lz / w[i];
+      const double vl = s.vx[i] * lx + s.vy[i] * ly + s.vz[i] * lz;
+      rate_gradient -= vl / w[i];
+      if (adj_inverse_mass) adj_inverse_mass[i] += rate_ * vl / (w[i] * w[i]);
+    }
+    params[module_slot(ModuleParameter::rate, -1)] += rate_gradient;
   }
 
  private:
@@ -94,13 +123,19 @@ class Wind final : public ForceModule {
     return (a_.capacity() + b_.capacity() + c_.capacity()) * sizeof(std::int32_t);
   }
 
-  // One axis of the mean wind, m/s.
+  // One axis of the mean wind (m/s), or a coefficient (learning).
   bool set_parameter(const ParameterId& id, double value) override {
-    const int axis = id.axis;
-    if (id.parameter != ModuleParameter::velocity || axis < 0 || axis > 2) return false;
-    base_[axis] = value;
+    double* p = slot(id);
+    if (!p) return false;
+    *p = value;
     return true;
   }
+  std::optional<double> parameter(const ParameterId& id) const override {
+    double* p = const_cast<Wind*>(this)->slot(id);
+    if (!p) return std::nullopt;
+    return *p;
+  }
+  bool has_adjoint() const override { return true; }
 
   // The cloth carried at the strongest gust, plus the strongest force the wind
   // can exert on the whole cloth pushing it across its own size.
@@ -176,7 +211,96 @@ class Wind final : public ForceModule {
     }
   }
 
+  // The same force read backwards, one triangle at a time (docs/learning.md):
+  // g = along uhat + across N with along, across functions of |u|, d = N.uhat
+  // and |N|; its adjoint flows to u (the mean vertex velocity and the wind),
+  // to N (the corners' positions) and to the coefficients.
+  void add_forces_adjoint(const ClothNetwork&, const ForceInputs& inputs, const ClothState& s,
+                          const NodeVectors& adj_force, ClothState& adj, double*,
+                          double* params) const override {
+    const double factor =
+        amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(inputs.time, period_);
+    const Vec3 wind = base_ * factor;
+    const double per_vertex = density_ / 12.0;
+    Vec3 adj_wind = Vec3::Zero();
+    double adj_drag = 0, adj_lift = 0;
+    for (std::size_t t = 0; t < a_.size(); ++t) {
+      const std::int32_t a = a_[t], b = b_[t], c = c_[t];
+      const Vec3 u = wind - (s.velocity(a) + s.velocity(b) + s.velocity(c)) * (1.0 / 3.0);
+      const double u2 = u.squaredNorm();
+      if (u2 <= kMinSpeed2) continue;
+      const Vec3 pa = s.position(a), e1 = s.position(b) - pa, e2 = s.position(c) - pa;
+      const Vec3 N = e1.cross(e2);
+      const double n2 = N.squaredNorm();
+      if (n2 <= kMinDoubleArea2) continue;
+      const double speed = std::sqrt(u2), n_len = std::sqrt(n2);
+      const Vec3 h = u / speed;
+      const double d = N.dot(h);
+      const double k = per_vertex * u2;
+      const double across = k * lift_ * d / n_len;
+      const double along = k * (drag_ * std::abs(d) + skin_ * n_len) - across * d;
+      // dE/dg: each corner took g.
+      const Vec3 lg = adj_force.at(a) + adj_force.at(b) + adj_force.at(c);
+      // g = along h + across N
+      const double l_along = lg.dot(h);
+      double l_across = lg.dot(N);
+      Vec3 l_h = along * lg;
+      Vec3 l_N = across * lg;
+      // along = k (C_D |d| + C_F |N|) - across d
+      const double sign_d = d > 0 ? 1.0 : (d < 0 ? -1.0 : 0.0);
+      double l_k = l_along * (drag_ * std::abs(d) + skin_ * n_len);
+      double l_d = l_along * (k * drag_ * sign_d - across);
+      double l_nlen = l_along * k * skin_;
+      l_across -= l_along * d;
+      adj_drag += l_along * k * std::abs(d);
+      // across = k C_L d / |N|
+      l_k += l_across * lift_ * d / n_len;
+      l_d += l_across * k * lift_ / n_len;
+      l_nlen -= l_across * k * lift_ * d / n2;
+      adj_lift += l_across * k * d / n_len;
+      // d = N.h, |N|
+      l_N += l_d * h + (l_nlen / n_len) * N;
+      l_h += l_d * N;
+      // k = rho/12 |u|^2, h = u / |u|
+      const Vec3 l_u = 2.0 * per_vertex * l_k * u + (l_h - l_h.dot(h) * h) / speed;
+      adj_wind += l_u;
+      const Vec3 l_v = -l_u / 3.0;
+      for (const std::int32_t corner : {a, b, c}) {
+        adj.vx[corner] += l_v.x();
+        adj.vy[corner] += l_v.y();
+        adj.vz[corner] += l_v.z();
+      }
+      // N = e1 x e2
+      const Vec3 l_e1 = e2.cross(l_N), l_e2 = l_N.cross(e1);
+      add_position(adj, b, l_e1);
+      add_position(adj, c, l_e2);
+      add_position(adj, a, -(l_e1 + l_e2));
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      params[module_slot(ModuleParameter::velocity, axis)] += factor * adj_wind[axis];
+    params[module_slot(ModuleParameter::drag, -1)] += adj_drag;
+    params[module_slot(ModuleParameter::lift, -1)] += adj_lift;
+  }
+
  private:
+  static void add_position(ClothState& adj, std::int32_t i, const Vec3& v) {
+    adj.x[i] += v.x();
+    adj.y[i] += v.y();
+    adj.z[i] += v.z();
+  }
+  double* slot(const ParameterId& id) {
+    switch (id.parameter) {
+      case ModuleParameter::velocity:
+        return id.axis >= 0 && id.axis < 3 ? &base_[id.axis] : nullptr;
+      case ModuleParameter::drag:
+        return &drag_;
+      case ModuleParameter::lift:
+        return &lift_;
+      default:
+        return nullptr;
+    }
+  }
+
   Vec3 base_;
   double amplitude_, period_;
   double density_, drag_, lift_, skin_;

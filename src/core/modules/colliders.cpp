@@ -34,6 +34,8 @@
 namespace neurocloth {
 namespace {
 
+using Mat3 = Eigen::Matrix3d;
+
 // Where a point stands against a shape: signed distance (negative inside) and
 // the unit direction to push it out along. The plane through the surface point
 // with this normal supports the (convex) shape, so a node moved within the
@@ -59,6 +61,11 @@ class PlaneShape {
   Contact contact(const Vec3& p, const Vec3&) const {
     const Vec3 n(nx_, ny_, nz_);
     return {n.dot(p) - offset_, n};
+  }
+  // d phi / dp and d normal / dp at a contact (learning): a flat face.
+  void jacobian(const Vec3&, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
+    grad_phi = c.normal;
+    dn.setZero();
   }
 
  private:
@@ -112,6 +119,23 @@ class BoxShape {
       side = d[axis] >= 0.0 ? 1.0 : -1.0;
     }
     return face(axis, side, d);
+  }
+  // A face has a constant normal; near an edge or a corner the normal turns
+  // with the node (the same cases as contact()).
+  void jacobian(const Vec3& p, const Vec3& before, const Contact& c, Vec3& grad_phi,
+                Mat3& dn) const {
+    grad_phi = c.normal;
+    dn.setZero();
+    const Vec3 d = p - c_, b = before - c_;
+    const Vec3 q = d.cwiseAbs() - e_;
+    int axis;
+    if (!(q.maxCoeff() > 0.0) || (may_cross(b, d) && entered(b, d, axis))) return;
+    if ((q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0) == 1) return;
+    const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
+    Mat3 mask = Mat3::Zero();
+    for (int k = 0; k < 3; ++k)
+      mask(k, k) = q[k] > 0.0 ? 1.0 : 0.0;
+    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * mask / out.norm();
   }
 
  private:
@@ -180,6 +204,22 @@ class CapsuleShape {
     if (!(dist > 0.0)) return {-r_, Vec3::UnitY()};
     return {dist - r_, d / dist};
   }
+  // The normal turns with the node around the axis (and everywhere near an end).
+  void jacobian(const Vec3& p, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
+    const Vec3 ap = p - a_;
+    const double t = ap.dot(ab_) * inv_len2_;
+    const Vec3 d = ap - std::clamp(t, 0.0, 1.0) * ab_;
+    const double dist = d.norm();
+    if (!(dist > 0.0)) {
+      grad_phi.setZero();
+      dn.setZero();
+      return;
+    }
+    Mat3 along = Mat3::Identity();  // d d / dp
+    if (t > 0.0 && t < 1.0) along -= ab_ * ab_.transpose() * inv_len2_;
+    grad_phi = along * c.normal;
+    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * along / dist;
+  }
 
  private:
   Vec3 a_, ab_;
@@ -226,6 +266,37 @@ class Collider final : public ConstraintModule {
     }
   }
 
+  bool has_adjoint() const override { return true; }
+  bool set_parameter(const ParameterId& id, double value) override {
+    if (id.parameter != ModuleParameter::friction || !spec_.friction) return false;
+    spec_.friction = value;
+    return true;
+  }
+  std::optional<double> parameter(const ParameterId& id) const override {
+    if (id.parameter != ModuleParameter::friction) return std::nullopt;
+    return spec_.friction;
+  }
+
+  // The same nodes as apply() (the test reads the uncorrected state, as apply
+  // did), each through resolve()'s derivative.
+  void apply_adjoint(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
+                     const ClothState& after, ClothState& adj, NodeVectors& adj_before,
+                     double* adj_friction, double* params) const override {
+    const double reach = spec_.thickness + kTouch;
+    for (std::size_t i = 0; i < after.size(); ++i) {
+      const Vec3 b = before.position(i), p = after.position(i);
+      if (net.masses.free[i] == 0.0 ||
+          !shape_.near(b.x(), b.y(), b.z(), p.x(), p.y(), p.z(), reach))
+        continue;
+      const Contact c = shape_.contact(p, b);
+      if (!(c.phi < reach)) continue;
+      double* mu = spec_.friction ? &params[module_slot(ModuleParameter::friction, -1)]
+                                  : (adj_friction ? &adj_friction[i] : nullptr);
+      resolve_adjoint(i, c, p, b, after.velocity(i), net.masses.friction[i], span.h, adj,
+                      adj_before, mu);
+    }
+  }
+
  private:
   void resolve(std::size_t i, const Contact& c, const Vec3& p, double node_friction, double h,
                const StepStart& before, ClothState& after) const {
@@ -248,6 +319,80 @@ class Collider final : public ConstraintModule {
     const Vec3 slip = step - step.dot(n) * n;
     after.set_position(i, p + std::max(depth, 0.0) * n - (1.0 - keep) * slip);
     after.set_velocity(i, std::max(vn, 0.0) * n + keep * vt);
+  }
+
+  // resolve() backwards: dE/d(corrected p, v) in adj at i becomes dE/d(p, v)
+  // as the step left them; dE/d(start position) goes to adj_before, dE/d(mu_k)
+  // to *adj_mu. Each line undoes one line of resolve(), last first.
+  void resolve_adjoint(std::size_t i, const Contact& c, const Vec3& p, const Vec3& b, const Vec3& v,
+                       double node_friction, double h, ClothState& adj, NodeVectors& adj_before,
+                       double* adj_mu) const {
+    const Vec3& n = c.normal;
+    const double vn = v.dot(n);
+    const Vec3 vt = v - vn * n;
+    const double depth = spec_.thickness - c.phi;
+    if (depth <= 0.0 && vn >= 0.0) return;  // identity
+    const bool push_by_depth = depth / h > -vn;
+    const double dvn = std::max(-vn, depth / h);
+    const double mu_k = spec_.friction.value_or(node_friction);
+    const double mu_s = std::max(spec_.static_friction.value_or(mu_k), mu_k);
+    const double speed = vt.norm();
+    const bool slides = !(speed <= mu_s * dvn) && 1.0 - mu_k * dvn / speed > 0.0;
+    const double keep = slides ? 1.0 - mu_k * dvn / speed : 0.0;
+    const Vec3 step = p - b;
+    const double sn = step.dot(n);
+    const Vec3 slip = step - sn * n;
+
+    const Vec3 lp_out = adj.position(i), lv_out = adj.velocity(i);
+    Vec3 lp = lp_out, lv = Vec3::Zero(), ln = Vec3::Zero();
+    double l_depth = 0, l_keep = 0, l_vn = 0;
+    // p' = p + max(depth, 0) n - (1 - keep) slip
+    if (depth > 0.0) {
+      l_depth += lp_out.dot(n);
+      ln += depth * lp_out;
+    }
+    l_keep += lp_out.dot(slip);
+    const Vec3 l_slip = -(1.0 - keep) * lp_out;
+    // v' = max(vn, 0) n + keep vt
+    if (vn > 0.0) {
+      l_vn += lv_out.dot(n);
+      ln += vn * lv_out;
+    }
+    l_keep += lv_out.dot(vt);
+    Vec3 l_vt = keep * lv_out;
+    // slip = step - (step.n) n, step = p - b
+    const double l_sn = -l_slip.dot(n);
+    ln += -sn * l_slip + l_sn * step;
+    const Vec3 l_step = l_slip + l_sn * n;
+    lp += l_step;
+    // keep = 1 - mu_k dvn / |vt| while sliding
+    double l_dvn = 0;
+    if (slides) {
+      if (adj_mu) *adj_mu -= l_keep * dvn / speed;
+      l_dvn -= l_keep * mu_k / speed;
+      l_vt += (l_keep * mu_k * dvn / (speed * speed * speed)) * vt;
+    }
+    // dvn = max(-vn, depth / h)
+    if (push_by_depth)
+      l_depth += l_dvn / h;
+    else
+      l_vn -= l_dvn;
+    // vt = v - vn n, vn = v.n
+    lv += l_vt;
+    l_vn -= l_vt.dot(n);
+    ln -= vn * l_vt;
+    lv += l_vn * n;
+    ln += l_vn * v;
+    // depth = thickness - phi(p), n = n(p)
+    Vec3 grad_phi;
+    Mat3 dn;
+    shape_.jacobian(p, b, c, grad_phi, dn);
+    lp += -l_depth * grad_phi + dn.transpose() * ln;
+    adj.set_position(i, lp);
+    adj.set_velocity(i, lv);
+    adj_before.x[i] -= l_step.x();
+    adj_before.y[i] -= l_step.y();
+    adj_before.z[i] -= l_step.z();
   }
 
   const char* type_;

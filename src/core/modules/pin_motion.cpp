@@ -37,6 +37,17 @@ class PinMotion final : public ConstraintModule {
     }
   }
 
+  // The path sets these nodes whatever the step did: nothing flows back through them.
+  bool has_adjoint() const override { return true; }
+  void apply_adjoint(const ClothNetwork&, const StepSpan&, const StepStart&, const ClothState&,
+                     ClothState& adj, NodeVectors&, double*, double*) const override {
+    for (int node : spec_.nodes) {
+      const auto n = static_cast<std::size_t>(node);
+      adj.set_position(n, Vec3::Zero());
+      adj.set_velocity(n, Vec3::Zero());
+    }
+  }
+
  private:
   // Offset and its rate at time t.
   void path(double t, Vec3& offset, Vec3& velocity) const {

@@ -18,6 +18,7 @@
 // new module (clone, then set): a copy of the model never sees it.
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "../cloth_state.h"
@@ -67,6 +68,12 @@ class SceneModule {
   // Made on a fresh clone (see above). False when the module has no such
   // parameter; the caller checks the range.
   virtual bool set_parameter(const ParameterId& /*id*/, double /*value*/) { return false; }
+  // The current value of a parameter set_parameter takes (only `parameter` and
+  // `axis` are read); nullopt when the module has none such.
+  virtual std::optional<double> parameter(const ParameterId& /*id*/) const { return std::nullopt; }
+  // Learning (docs/learning.md): true when the module has a hand-written adjoint
+  // (add_forces_adjoint / apply_adjoint), so a fit can differentiate through it.
+  virtual bool has_adjoint() const { return false; }
   // The scene's declaration, as JSON text, for reports and the viewer.
   std::string declaration;
 };
@@ -85,6 +92,14 @@ class ForceModule : public SceneModule {
   // `inputs` are the step's (its time); `net` is the model this module is part of.
   virtual void add_forces(const ClothNetwork& net, const ForceInputs& inputs,
                           const ClothState& state, NodeVectors& force) const = 0;
+  // The adjoint of add_forces (back-propagation through time): given
+  // adj_force = dE/dF, adds dE/dp and dE/dv into `adj_state`, dE/d(1/m_i) into
+  // adj_inverse_mass (per node; null when not wanted), and dE/d(parameter)
+  // into params[module_slot(...)] (kModuleParameterSlots of them).
+  virtual void add_forces_adjoint(const ClothNetwork& /*net*/, const ForceInputs& /*inputs*/,
+                                  const ClothState& /*state*/, const NodeVectors& /*adj_force*/,
+                                  ClothState& /*adj_state*/, double* /*adj_inverse_mass*/,
+                                  double* /*params*/) const {}
 };
 
 // Where the nodes were when the step began (positions only: no constraint
@@ -121,6 +136,15 @@ class ConstraintModule : public SceneModule {
   // Pinned nodes (free == 0) are moved only by prescribe modules.
   virtual void apply(const ClothNetwork& net, const StepSpan& span, const StepStart& before,
                      ClothState& after, ModuleState* state) const = 0;
+  // The adjoint of apply: `uncorrected` is `after` as apply received it; on
+  // entry `adj` is dE/d(corrected after), on return dE/d(uncorrected after).
+  // dE/d(before positions) is added into adj_before, dE/d(node friction) into
+  // adj_friction (per node; null when not wanted), dE/d(own parameters) into
+  // params[module_slot(...)]. Only for modules whose has_adjoint() is true.
+  virtual void apply_adjoint(const ClothNetwork& /*net*/, const StepSpan& /*span*/,
+                             const StepStart& /*before*/, const ClothState& /*uncorrected*/,
+                             ClothState& /*adj*/, NodeVectors& /*adj_before*/,
+                             double* /*adj_friction*/, double* /*params*/) const {}
 };
 
 }  // namespace neurocloth

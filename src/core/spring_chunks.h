@@ -1,0 +1,74 @@
+#pragma once
+// How the spring layer is walked in chunks: runs of springs whose end nodes are
+// consecutive (spring_layer.h), cut so that a chunk's outputs stay in L1. Shared
+// by the force evaluation (cloth_network.cpp) and its adjoint
+// (spring_adjoint.cpp), which must visit the springs the same way. Internal to
+// the core.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "spring_layer.h"
+
+namespace neurocloth {
+namespace spring_chunks {
+
+// Force-neuron outputs live only as long as the acceleration neurons need them:
+// a chunk this size stays in L1, so the outputs never travel to memory.
+constexpr std::int32_t kChunk = 256;
+struct Chunk {
+  alignas(64) double fx[kChunk];
+  alignas(64) double fy[kChunk];
+  alignas(64) double fz[kChunk];
+};
+
+// Acceleration neurons: add each force neuron's output with weight +1 at n_i1
+// and -1 at n_i2, in passes where no two writes of one loop hit the same node.
+inline void accumulate_chunk(std::int32_t count, std::int32_t a, std::int32_t b, const double* fx,
+                             const double* fy, const double* fz, std::array<double*, 3> dst) {
+  const double* const src[3] = {fx, fy, fz};
+  const std::int32_t o = b - a;
+  for (int c = 0; c < 3; ++c) {
+    const double* f = src[c];
+    double* to = dst[c] + a;
+    if (o > 0 && o < count) {
+      // Overlapping ends (a row's neighbours, o = 1 or 2): node a+j receives
+      // +f[j] and -f[j-o], so one pass over the nodes does both ends.
+      for (std::int32_t j = 0; j < o; ++j)
+        to[j] += f[j];
+#pragma GCC ivdep
+      for (std::int32_t j = o; j < count; ++j)
+        to[j] += f[j] - f[j - o];
+      for (std::int32_t j = count; j < count + o; ++j)
+        to[j] -= f[j - o];
+    } else {
+#pragma GCC ivdep
+      for (std::int32_t k = 0; k < count; ++k)
+        to[k] += f[k];
+      double* to_b = dst[c] + b;
+#pragma GCC ivdep
+      for (std::int32_t k = 0; k < count; ++k)
+        to_b[k] -= f[k];
+    }
+  }
+}
+
+// Below this node offset a direct chunk would be too short to fill a vector.
+constexpr std::int32_t kMinDirectOffset = 16;
+
+// Calls fn(first, count, a, b, direct) for every chunk of every run. A run whose
+// ends are at least kMinDirectOffset nodes apart is cut into chunks no longer
+// than that offset, so each chunk's two node ranges are disjoint (direct).
+template <typename Fn>
+void for_each_chunk(const SpringLayer& L, Fn&& fn) {
+  for (const SpringRun& r : L.runs) {
+    const std::int32_t offset = r.node_b - r.node_a;
+    const bool direct = offset >= kMinDirectOffset || -offset >= kMinDirectOffset;
+    const std::int32_t size = direct ? std::min(kChunk, offset < 0 ? -offset : offset) : kChunk;
+    for (std::int32_t k = 0; k < r.count; k += size)
+      fn(r.first + k, std::min(size, r.count - k), r.node_a + k, r.node_b + k, direct);
+  }
+}
+
+}  // namespace spring_chunks
+}  // namespace neurocloth

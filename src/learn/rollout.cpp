@@ -1,0 +1,262 @@
+#include "rollout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "integrator.h"
+#include "scene.h"
+
+namespace neurocloth {
+
+struct Rollout::Tape {
+  std::vector<ClothState> checkpoints;  // states 0, K, 2K, ... (recomputing mode)
+  std::vector<ClothState> states;       // one segment: states k0 .. k0 + K
+  std::vector<ClothState> pre;          // per step of the segment, before each constraint
+  NodeVectors forces, adj_force, adj_before;
+  ClothState adj;
+  ForceInputs inputs;
+  std::unique_ptr<Integrator> integrator;
+};
+
+Rollout::Rollout(ClothState initial, StepPlan steps, ObservationPlan observations,
+                 std::size_t tape_budget_bytes)
+    : initial_(std::move(initial)),
+      steps_(std::move(steps)),
+      obs_(std::move(observations)),
+      budget_(tape_budget_bytes),
+      tape_(std::make_unique<Tape>()) {
+  const std::size_t T = steps_.count();
+  if (T == 0) throw std::invalid_argument("a rollout needs at least one step");
+  compared_.assign(obs_.size(), Vec3::Zero());
+  frames_of_step_begin_.assign(T + 2, obs_.frames.size());
+  for (std::size_t f = obs_.frames.size(); f-- > 0;) {
+    if (obs_.frames[f].step >= T) throw std::invalid_argument("an observation after the last step");
+    frames_of_step_begin_[obs_.frames[f].step] = f;
+  }
+  for (std::size_t k = T + 1; k-- > 0;)
+    frames_of_step_begin_[k] = std::min(frames_of_step_begin_[k], frames_of_step_begin_[k + 1]);
+}
+
+Rollout::~Rollout() = default;
+
+void Rollout::step_forward(const RolloutModel& m, std::size_t k, const ClothState& in,
+                           ClothState& out, ClothState* pre) {
+  Tape& t = *tape_;
+  t.inputs.time = steps_.start[k];
+  const double h = steps_.size[k];
+  // As Simulation::fixed_step_now takes it: forces at the step's start, the
+  // integrator, then each constraint in order on the step's result.
+  m.net.net_forces(in, t.inputs, t.forces);
+  t.integrator->step(m.net, t.inputs, in, t.forces, h, out);
+  const StepSpan span{steps_.start[k], h};
+  for (std::size_t j = 0; j < m.constraints.size(); ++j) {
+    pre[j] = out;
+    m.constraints[j]->apply(m.net, span, StepStart(in), out, nullptr);
+  }
+}
+
+void Rollout::observe(std::size_t k, const ClothState& before, const ClothState& after) {
+  for (std::size_t f = frames_of_step_begin_[k]; f < frames_of_step_begin_[k + 1]; ++f) {
+    const ObservationPlan::Frame& fr = obs_.frames[f];
+    for (std::size_t o = fr.first; o < fr.first + fr.count; ++o) {
+      const auto i = static_cast<std::size_t>(obs_.nodes[o]);
+      compared_[o] = (1.0 - fr.alpha) * before.position(i) + fr.alpha * after.position(i);
+    }
+  }
+}
+
+// dE/dp_j from the frames that read state j: those in step j-1 (weight alpha)
+// and those in step j (weight 1 - alpha).
+void Rollout::add_loss_gradient(std::size_t j, ClothState& adj) const {
+  auto add = [&](std::size_t f, bool upper) {
+    const ObservationPlan::Frame& fr = obs_.frames[f];
+    const double w = upper ? fr.alpha : 1.0 - fr.alpha;
+    if (w == 0.0) return;
+    for (std::size_t o = fr.first; o < fr.first + fr.count; ++o) {
+      const auto i = static_cast<std::size_t>(obs_.nodes[o]);
+      const Vec3 r = w * (compared_[o] - obs_.targets[o]);
+      adj.x[i] += r.x();
+      adj.y[i] += r.y();
+      adj.z[i] += r.z();
+    }
+  };
+  if (j > 0)
+    for (std::size_t f = frames_of_step_begin_[j - 1]; f < frames_of_step_begin_[j]; ++f)
+      add(f, true);
+  for (std::size_t f = frames_of_step_begin_[j]; f < frames_of_step_begin_[j + 1]; ++f)
+    add(f, false);
+}
+
+// One network step backwards. Forward it was (integrator network, in == s_k):
+//   v' = v + h free (w F(s_k) + g),  p' = p + h v',  then the constraints.
+// So, from dE/d(constrained p', v') in adj:
+//   constraints, last first -> dE/d(p', v') and dE/d(p) through their start;
+//   lv = dE/dv' + h dE/dp',  dE/dF = h free w lv,  dE/dw += h free F.lv;
+//   dE/dp = dE/dp' (+ the constraints' share),  dE/dv = lv, then F's own adjoint.
+void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothState& in,
+                            const ClothState* pre, ClothState& adj, RolloutGradients& g) {
+  Tape& t = *tape_;
+  const ClothNetwork& net = m.net;
+  const std::size_t n = net.node_count();
+  const double h = steps_.size[k];
+  t.inputs.time = steps_.start[k];
+  const bool constrained = !m.constraints.empty();
+  if (constrained) {
+    std::fill(t.adj_before.x.begin(), t.adj_before.x.end(), 0.0);
+    std::fill(t.adj_before.y.begin(), t.adj_before.y.end(), 0.0);
+    std::fill(t.adj_before.z.begin(), t.adj_before.z.end(), 0.0);
+    const StepSpan span{steps_.start[k], h};
+    for (std::size_t j = m.constraints.size(); j-- > 0;)
+      m.constraints[j]->apply_adjoint(net, span, StepStart(in), pre[j], adj, t.adj_before,
+                                      g.friction.empty() ? nullptr : g.friction.data(),
+                                      g.constraints[j].data());
+  }
+  const double* w = net.masses.inverse_mass.data();
+  const double* free = net.masses.free.data();
+  double* const lp[3] = {adj.x.data(), adj.y.data(), adj.z.data()};
+  double* const lv[3] = {adj.vx.data(), adj.vy.data(), adj.vz.data()};
+  double* const lF[3] = {t.adj_force.x.data(), t.adj_force.y.data(), t.adj_force.z.data()};
+  for (int c = 0; c < 3; ++c) {
+    double* __restrict p = lp[c];
+    double* __restrict v = lv[c];
+    double* __restrict f = lF[c];
+#pragma GCC ivdep
+    for (std::size_t i = 0; i < n; ++i) {
+      v[i] += h * p[i];
+      f[i] = h * free[i] * w[i] * v[i];
+    }
+  }
+  if (constrained) {
+    const double* const lb[3] = {t.adj_before.x.data(), t.adj_before.y.data(),
+                                 t.adj_before.z.data()};
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i)
+        lp[c][i] += lb[c][i];
+  }
+  double* adj_w = g.inverse_mass.empty() ? nullptr : g.inverse_mass.data();
+  if (adj_w) {
+    net.net_forces(in, t.inputs, t.forces);
+    for (std::size_t i = 0; i < n; ++i)
+      adj_w[i] +=
+          h * free[i] *
+          (t.forces.x[i] * adj.vx[i] + t.forces.y[i] * adj.vy[i] + t.forces.z[i] * adj.vz[i]);
+  }
+  spring_forces_adjoint(net, in, t.adj_force, adj, g.springs);
+  for (std::size_t j = 0; j < net.force_modules.size(); ++j)
+    net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
+                                             g.force_modules[j].data());
+}
+
+double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
+  Tape& t = *tape_;
+  const std::size_t T = steps_.count();
+  const std::size_t C = m.constraints.size();
+  const std::size_t n = m.net.node_count();
+  if (initial_.size() != n) throw std::invalid_argument("rollout: state and model differ in size");
+  if (!t.integrator || t.forces.size() != n) {
+    t.integrator = make_integrator(IntegratorKind::network, m.net);
+    t.forces.resize(n);
+    t.adj_force.resize(n);
+    t.adj_before.resize(C ? n : 0);
+  }
+  // Everything on the tape when it fits; else segments of about sqrt(T) steps.
+  const std::size_t state_bytes = initial_.allocated_bytes();
+  const bool keep_all = !g || (T + 1 + T * C) * state_bytes <= budget_;
+  const std::size_t K =
+      keep_all
+          ? T
+          : std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(T)))));
+  segment_ = K;
+  const std::size_t kept = g ? K : 1;  // a forward-only run keeps two states
+  if (t.states.size() < kept + 1) t.states.assign(kept + 1, initial_);
+  if (t.pre.size() < kept * C + C) t.pre.assign(kept * C + C, initial_);
+  const std::size_t checkpoints = keep_all ? 0 : (T + K - 1) / K;
+  t.checkpoints.resize(checkpoints);
+
+  // Forward.
+  t.states[0] = initial_;
+  if (g && keep_all) {
+    for (std::size_t k = 0; k < T; ++k) {
+      step_forward(m, k, t.states[k], t.states[k + 1], t.pre.data() + k * C);
+      observe(k, t.states[k], t.states[k + 1]);
+    }
+  } else {
+    ClothState* cur = &t.states[0];
+    ClothState* next = &t.states[1];
+    for (std::size_t k = 0; k < T; ++k) {
+      if (checkpoints && k % K == 0) t.checkpoints[k / K] = *cur;
+      step_forward(m, k, *cur, *next, t.pre.data());
+      observe(k, *cur, *next);
+      std::swap(cur, next);
+    }
+  }
+  std::size_t bytes = 0;
+  for (const auto* list : {&t.checkpoints, &t.states, &t.pre})
+    for (const ClothState& s : *list)
+      bytes += s.allocated_bytes();
+  peak_bytes_ = std::max(peak_bytes_, bytes);
+
+  double E = 0;
+  for (std::size_t o = 0; o < obs_.size(); ++o)
+    E += 0.5 * (compared_[o] - obs_.targets[o]).squaredNorm();
+  if (!g) return E;
+
+  // Backward.
+  g->springs.resize(m.net.spring_count());
+  for (auto* v : {&g->inverse_mass, &g->friction})
+    if (!v->empty()) v->assign(n, 0.0);
+  g->force_modules.assign(m.net.force_modules.size(), {});
+  g->constraints.assign(C, {});
+  if (!std::isfinite(E)) return E;
+  t.adj.resize(n);
+  for (std::size_t seg = (T + K - 1) / K; seg-- > 0;) {
+    const std::size_t k0 = seg * K, k1 = std::min(T, k0 + K);
+    if (!keep_all) {
+      t.states[0] = t.checkpoints[seg];
+      for (std::size_t k = k0; k < k1; ++k)
+        step_forward(m, k, t.states[k - k0], t.states[k - k0 + 1], t.pre.data() + (k - k0) * C);
+    }
+    for (std::size_t k = k1; k-- > k0;) {
+      add_loss_gradient(k + 1, t.adj);
+      step_backward(m, k, t.states[k - k0], t.pre.data() + (k - k0) * C, t.adj, *g);
+    }
+  }
+  return E;
+}
+
+StepPlan plan_steps(const Scene& scene, double duration) {
+  StepPlan plan;
+  if (!(duration > 0)) return plan;
+  const double dt = scene.solver.dt;
+  if (!scene.solver.adaptive) {
+    // Simulation::advance's arithmetic: steps of dt, a shorter last one, and
+    // the end time exact.
+    double t = 0;
+    while (t < duration) {
+      const double remaining = duration - t;
+      const bool last = remaining <= dt * (1.0 + 1e-9);
+      const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
+      const double h = last && !whole ? remaining : dt;
+      plan.start.push_back(t);
+      plan.size.push_back(h);
+      t = last ? duration : t + h;
+    }
+    return plan;
+  }
+  Simulation sim = scene.make_simulation();
+  sim.set_observer([&](const StepEvent& e) {
+    if (!e.accepted) return;
+    plan.start.push_back(e.time);
+    plan.size.push_back(e.step);
+  });
+  if (sim.advance(duration) != RunStatus::ok)
+    throw std::runtime_error("the scene's own run diverged before " + std::to_string(duration) +
+                             " s: " + sim.divergence_reason());
+  if (sim.budget_exhausted())
+    throw std::runtime_error("the scene's own run ran out of step budget before " +
+                             std::to_string(duration) + " s");
+  return plan;
+}
+
+}  // namespace neurocloth

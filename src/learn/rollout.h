@@ -1,0 +1,109 @@
+#pragma once
+// Back-propagation through time (paper eq. 18-19) for the network integrator:
+// a forward run that keeps what the backward run needs (a tape), and the
+// backward run that carries dE/d(state) from the last step to the first,
+// collecting dE/d(weight) on its way. Hand-written: each step's adjoint undoes
+// the step's lines in reverse (docs/learning.md, "The gradient").
+//
+// Memory: the tape holds every state (and, when the scene has constraints, the
+// state before each constraint) while that fits the budget; above it only every
+// K-th state is kept and the backward run recomputes each segment of K steps
+// from its checkpoint (one more forward pass, memory ~ (T/K + K) states).
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "cloth_network.h"
+#include "spring_adjoint.h"
+
+namespace neurocloth {
+
+// The model a rollout reads: a network with its force modules, and the
+// constraints run after each step, in run order (what Scene::make_simulation
+// builds).
+struct RolloutModel {
+  ClothNetwork net;
+  std::vector<std::shared_ptr<const ConstraintModule>> constraints;
+};
+
+// The steps a run takes, start time and size each: a fixed step, or the
+// accepted steps of the adaptive propagation held fixed while weights change.
+struct StepPlan {
+  std::vector<double> start, size;
+  std::size_t count() const { return size.size(); }
+  double end() const { return size.empty() ? 0.0 : start.back() + size.back(); }
+};
+
+// Where the loss compares the network with data. A frame at time t between the
+// states after step k-1 and k+1 (t_k <= t <= t_k+1) is compared with
+// (1 - alpha) p_k + alpha p_k+1, alpha = (t - t_k) / h_k: the position at the
+// frame's own time, not at the nearest step.
+struct ObservationPlan {
+  struct Frame {
+    std::size_t step = 0;  // k: the frame lies in step k (states k and k+1)
+    double alpha = 0;
+    std::size_t first = 0, count = 0;  // its observations in nodes / targets
+  };
+  std::vector<Frame> frames;        // in time order
+  std::vector<std::int32_t> nodes;  // network nodes
+  std::vector<Vec3> targets;        // measured positions, m
+  std::size_t size() const { return nodes.size(); }
+};
+
+// dE/d(weight) in the network's order, and dE/d(module parameter) per module
+// slot (parameter_id.h: module_slot).
+struct RolloutGradients {
+  SpringGradients springs;
+  std::vector<double> inverse_mass, friction;  // per node
+  std::vector<std::array<double, kModuleParameterSlots>> force_modules, constraints;
+};
+
+class Rollout {
+ public:
+  // `steps` starts at the initial state's time (0). Every frame lies in [0, steps.end()].
+  Rollout(ClothState initial, StepPlan steps, ObservationPlan observations,
+          std::size_t tape_budget_bytes);
+  ~Rollout();
+
+  // Runs the model forward over the plan and returns the data term
+  // E = sum 1/2 |p(t) - y|^2 (m^2); NaN when the run left finite numbers.
+  // With `gradients`, runs backward too and sets them (sized for the model).
+  double run(const RolloutModel& model, RolloutGradients* gradients);
+
+  // The positions compared with each observation at the last run (m).
+  const std::vector<Vec3>& compared() const { return compared_; }
+  // Largest memory the tape held in a run so far (checkpoints + a segment), bytes.
+  std::size_t peak_tape_bytes() const { return peak_bytes_; }
+  // Steps per recomputed segment (the step count when everything fits).
+  std::size_t segment_steps() const { return segment_; }
+  const StepPlan& steps() const { return steps_; }
+
+ private:
+  struct Tape;
+  void step_forward(const RolloutModel& m, std::size_t k, const ClothState& in, ClothState& out,
+                    ClothState* pre_constraints);
+  void observe(std::size_t k, const ClothState& before, const ClothState& after);
+  void add_loss_gradient(std::size_t state_index, ClothState& adj) const;
+  void step_backward(const RolloutModel& m, std::size_t k, const ClothState& in,
+                     const ClothState* pre_constraints, ClothState& adj, RolloutGradients& g);
+
+  ClothState initial_;
+  StepPlan steps_;
+  ObservationPlan obs_;
+  std::size_t budget_;
+  std::size_t segment_ = 0;
+  std::size_t peak_bytes_ = 0;
+  std::vector<Vec3> compared_;
+  // For each step, the frames that compare states k and k+1.
+  std::vector<std::size_t> frames_of_step_begin_;
+  std::unique_ptr<Tape> tape_;
+};
+
+// The plan a scene's solver takes to `duration`: fixed steps as
+// Simulation::advance takes them, or (adaptive) the steps it accepted, run
+// once with the scene's own weights. Throws std::runtime_error when that run
+// diverges or runs out of step budget.
+struct Scene;
+StepPlan plan_steps(const Scene& scene, double duration);
+
+}  // namespace neurocloth
