@@ -39,6 +39,11 @@ std::vector<ParameterRange> parameter_ranges(const Scene& scene) {
           case ModuleParameter::velocity:
             range = {id, range.name, -50, 50, "m/s"};
             break;
+          case ModuleParameter::rate:  // learning adapts these; they are no live control
+          case ModuleParameter::drag:
+          case ModuleParameter::lift:
+          case ModuleParameter::friction:
+            continue;
         }
         break;
     }
