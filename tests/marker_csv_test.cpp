@@ -73,6 +73,7 @@ TEST(MarkerCsvErrors, NanOrInfinityIsNamed) {
   expect_reference_error(kHeader + "0,1,0,0,1e999\n", kNodes, 2, "z");
   expect_reference_error(kHeader + "NaN,1,0,0,0\n", kNodes, 2, "time");
   expect_reference_error(kHeader + "0,1,0,0,1.5m\n", kNodes, 2, "z", "not a number");
+  expect_reference_error(kHeader + "0,1,0,-2e6,0\n", kNodes, 2, "y", "1e6 m");
 }
 
 TEST(MarkerCsvErrors, TimeGoingBackIsNamed) {

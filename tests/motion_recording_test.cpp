@@ -21,7 +21,8 @@ constexpr std::size_t kNodes = 3;
 
 // Doubles whose decimal forms would not survive a text round trip unchanged.
 std::vector<Vec3> awkward_positions(double t) {
-  return {Vec3(0.1 + t, 1.0 / 3.0, -0.0), Vec3(4.9406564584124654e-324, 1e300, -2.5e-17 * t),
+  return {Vec3(0.1 + t, 1.0 / 3.0, -0.0),
+          Vec3(4.9406564584124654e-324, 999999.99999999988, -2.5e-17 * t),
           Vec3(std::nextafter(1.0, 2.0), -7.0, t)};
 }
 
@@ -91,6 +92,8 @@ TEST(MotionRecording, RefusesANonFinitePositionAndWritesNoneOfIt) {
   bad[2].y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(w.add_frame(0.1, bad), std::runtime_error);
   bad[2].y() = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(w.add_frame(0.1, bad), std::runtime_error);
+  bad[2].y() = -1.5e6;  // finite, but a unit mistake the reader would refuse
   EXPECT_THROW(w.add_frame(0.1, bad), std::runtime_error);
   w.add_frame(0.2, awkward_positions(0.2));
   w.finish();
@@ -214,6 +217,9 @@ TEST(MotionRecordingErrors, ANonFinitePositionOrTimeIsNamed) {
   bytes = valid_bytes();
   put_double(bytes, body_start(bytes) + 8, -std::numeric_limits<double>::infinity());
   expect_reference_error(bytes, kNodes, 0, "frame 0 node 0");
+  bytes = valid_bytes();
+  put_double(bytes, body_start(bytes) + 2 * kStride + 8 * 3, 3.7e254);  // its square overflows
+  expect_reference_error(bytes, kNodes, 0, "frame 2 node 0", "1e6 m");
   bytes = valid_bytes();
   put_double(bytes, body_start(bytes) + 2 * kStride, std::numeric_limits<double>::infinity());
   expect_reference_error(bytes, kNodes, 0, "frame 2 time");

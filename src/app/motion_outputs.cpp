@@ -48,10 +48,21 @@ MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : sce
 }
 
 void MotionOutputs::frame(const Simulation& sim) {
+  if (!stopped_.empty()) return;
   const ClothState& s = sim.state();
-  for (std::size_t k = 0; k < positions_.size(); ++k)
+  for (std::size_t k = 0; k < positions_.size(); ++k) {
     positions_[k] =
         s.position(static_cast<std::size_t>(scene_.topology.numbering.node(static_cast<int>(k))));
+    if (!reference_position_ok(positions_[k])) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "frames stop before t = %.6g s: node %zu is beyond 1e6 m from the origin "
+                    "there (a run blowing up?)",
+                    sim.time(), k);
+      stopped_ = buf;
+      return;
+    }
+  }
   if (recording_) recording_->add_frame(sim.time(), positions_);
   if (pc2_) pc2_->add_frame(positions_);
   times_.push_back(sim.time());
@@ -84,6 +95,7 @@ std::vector<std::string> MotionOutputs::finish(const Simulation& sim) {
     lines.push_back("exported " + pc2_->path() + " (" + frames + ") and its rest mesh " +
                     mesh_path_ + " (docs/learning.md: playing it in Blender)");
   }
+  if (!stopped_.empty()) lines.push_back(stopped_);
   if (sim.status() != RunStatus::ok) {
     std::snprintf(buf, sizeof buf,
                   "the run diverged: the frames stop at the last good state (t = %.6g s)%s",
@@ -97,6 +109,7 @@ nlohmann::json MotionOutputs::result_json() const {
   nlohmann::json j = {{"fps", fps_},
                       {"frames", times_.size()},
                       {"last_frame_time", times_.empty() ? 0.0 : times_.back()}};
+  if (!stopped_.empty()) j["stopped"] = stopped_;
   if (recording_) j["record"] = recording_->path();
   if (pc2_) {
     j["pc2"] = pc2_->path();

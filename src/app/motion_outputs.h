@@ -24,7 +24,9 @@ class MotionOutputs {
   MotionOutputs(const SimulateOptions& options, const Scene& scene);
 
   double fps() const { return fps_; }
-  // Adds the simulation's present state as the next frame.
+  // Adds the simulation's present state as the next frame. A state a file
+  // must not hold (a coordinate beyond kMaxReferenceCoordinate: a run blowing
+  // up between two divergence checks) ends the frames there, said at the end.
   void frame(const Simulation& sim);
   // After the run: keeps the frames up to `sim`'s time (a diverged run rolled
   // back to its last good state, and frames after it go).
@@ -42,6 +44,7 @@ class MotionOutputs {
   std::string mesh_path_;
   std::vector<double> times_;    // of the frames kept so far
   std::size_t dropped_ = 0;      // frames after a divergence's rollback
+  std::string stopped_;          // why frames stopped before the run did
   std::vector<Vec3> positions_;  // one frame in file order, reused
 };
 

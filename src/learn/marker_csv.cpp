@@ -76,7 +76,8 @@ class MarkerReader {
     const double time = number(fields[0], "time");
     if (time < 0) throw InputError(path_, "time", "must be >= 0 (s from the start)", line_);
     const std::size_t node = node_index(fields[1]);
-    const Vec3 p(number(fields[2], "x"), number(fields[3], "y"), number(fields[4], "z"));
+    const Vec3 p(coordinate(fields[2], "x"), coordinate(fields[3], "y"),
+                 coordinate(fields[4], "z"));
 
     if (motion_.frames.empty() || time != motion_.frames.back().time) {
       if (!motion_.frames.empty() && time < motion_.frames.back().time)
@@ -121,6 +122,15 @@ class MarkerReader {
       throw InputError(path_, name, "not a number: " + shown(field), line_);
     // strtod reads "nan" and "inf", and overflows to infinity (ERANGE).
     if (!std::isfinite(v)) throw InputError(path_, name, "NaN or infinite: " + shown(field), line_);
+    return v;
+  }
+
+  double coordinate(std::string_view field, const char* name) const {
+    const double v = number(field, name);
+    if (std::abs(v) > kMaxReferenceCoordinate)
+      throw InputError(path_, name,
+                       "beyond 1e6 m from the origin: " + shown(field) + " (a unit mistake?)",
+                       line_);
     return v;
   }
 

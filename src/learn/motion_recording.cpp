@@ -103,10 +103,10 @@ void RecordingWriter::add_frame(double time, const std::vector<Vec3>& positions)
   put_double(out, time);
   for (std::size_t k = 0; k < positions.size(); ++k) {
     const Vec3& p = positions[k];
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+    if (!reference_position_ok(p))
       throw std::runtime_error(path() + ": refused the frame at t = " + std::to_string(time) +
                                " s: node " + std::to_string(k) +
-                               " is not finite (NaN or infinity is never written)");
+                               " is NaN, infinite or beyond 1e6 m (never written to a file)");
     put_double(out, p.x());
     put_double(out, p.y());
     put_double(out, p.z());
@@ -220,8 +220,9 @@ ReferenceMotion parse_motion_recording(const std::string& bytes, const std::stri
     for (std::size_t k = 0; k < nodes; ++k) {
       const unsigned char* p = in + 8 * (1 + 3 * k);
       const Vec3 v(get_double(p), get_double(p + 8), get_double(p + 16));
-      if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z()))
-        throw InputError(path, where + " node " + std::to_string(k), "NaN or infinite position");
+      if (!reference_position_ok(v))
+        throw InputError(path, where + " node " + std::to_string(k),
+                         "NaN, infinite or beyond 1e6 m from the origin (a unit mistake?)");
       frame.nodes[k] = static_cast<std::int32_t>(k);
       frame.positions[k] = v;
     }

@@ -1,5 +1,7 @@
 #include "reference_motion.h"
 
+#include <cmath>
+
 #include "input_error.h"
 #include "marker_csv.h"
 #include "motion_recording.h"
@@ -12,6 +14,12 @@ std::size_t ReferenceMotion::observations() const {
   for (const ReferenceFrame& f : frames)
     n += f.nodes.size();
   return n;
+}
+
+bool reference_position_ok(const Vec3& p) {
+  // Written so that NaN fails too.
+  return std::abs(p.x()) <= kMaxReferenceCoordinate && std::abs(p.y()) <= kMaxReferenceCoordinate &&
+         std::abs(p.z()) <= kMaxReferenceCoordinate;
 }
 
 ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,

@@ -38,6 +38,12 @@ struct ReferenceMotion {
 // the file states.
 inline constexpr std::size_t kMaxReferenceBytes = std::size_t(1) << 30;  // 1 GiB
 inline constexpr std::size_t kMaxReferenceObservations = std::size_t(1) << 25;
+// A coordinate beyond 1000 km of the origin is a unit mistake (mm read as m
+// a million times over), and its square would overflow the fit's sums.
+inline constexpr double kMaxReferenceCoordinate = 1e6;  // m
+
+// True when every coordinate of `p` is finite and within kMaxReferenceCoordinate.
+bool reference_position_ok(const Vec3& p);
 
 // Reads a recording or a markers CSV, told apart by their first bytes (the
 // recording's magic line, else the CSV). `node_count` is the scene's: every
