@@ -41,6 +41,17 @@ int main(int argc, char** argv) {
                    "assets/tradeoff/<scene>.csv, else measured first")
       ->needs(accuracy);
 
+  simulate->add_option(
+      "--record", sim.record,
+      "Write every node's position at every frame time k / fps to FILE (a recording the "
+      "learning stage reads; docs/learning.md)");
+  simulate->add_option(
+      "--export-pc2", sim.export_pc2,
+      "Write the frames as a PC2 point cache FILE.pc2 and the rest mesh as FILE.obj, for "
+      "Blender's Mesh Cache modifier (docs/learning.md)");
+  simulate->add_option("--record-fps", sim.record_fps,
+                       "Frames per simulated second for --record and --export-pc2 (default 60)");
+
   TradeoffOptions trade;
   auto* tradeoff = app.add_subcommand(
       "tradeoff", "Measure speed against accuracy for every integrator; write CSV, chart, summary");

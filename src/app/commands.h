@@ -35,6 +35,12 @@ struct SimulateOptions {
   std::optional<double> accuracy;
   std::optional<std::string> trade;
   double progress = 2;  // wall seconds between progress lines on stderr; 0: none
+  // --record FILE: every node at every frame time k / fps, in the file's node
+  // order (docs/learning.md, "Reference motion"); --export-pc2 FILE.pc2: the
+  // same frames as a PC2 point cache, with the rest mesh as FILE.obj.
+  std::optional<std::string> record;
+  std::optional<std::string> export_pc2;
+  std::optional<double> record_fps;  // default 60
 };
 int run_simulate(const SimulateOptions& options);
 

@@ -106,18 +106,55 @@ std::string human_duration(double s) {
   return buf;
 }
 
-LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& options) {
+namespace {
+
+// Runs `advance` under Ctrl-C and progress lines; what run_long and
+// run_long_frames share.
+template <class Advance>
+LongRunOutcome run_watched(Simulation& sim, double seconds, const LongRunOptions& options,
+                           Advance&& advance) {
   const InterruptScope scope;
   Progress progress(sim.time(), seconds, options.progress_every);
   progress.begin(sim);
   sim.set_interrupt([&](const Simulation& s) { return progress(s); });
   const Clock::time_point start = Clock::now();
-  sim.advance(seconds);
   LongRunOutcome out;
+  out.interrupted = advance(progress);
   out.wall_seconds = since(start);
-  out.interrupted = sim.interrupted();
   sim.set_interrupt({});
   return out;
+}
+
+}  // namespace
+
+LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& options) {
+  return run_watched(sim, seconds, options, [&](Progress&) {
+    sim.advance(seconds);
+    return sim.interrupted();
+  });
+}
+
+LongRunOutcome run_long_frames(Simulation& sim, double seconds, double fps,
+                               const std::function<void(const Simulation&)>& frame,
+                               const LongRunOptions& options) {
+  const double start = sim.time(), end = start + seconds;
+  return run_watched(sim, seconds, options, [&](Progress& progress) {
+    for (long k = 1;; ++k) {
+      // k / fps, not a sum of 1 / fps: no drift however many frames. From a
+      // start of 0, time() - (k - 1) / fps is exact and so is the landing.
+      const double t = start + static_cast<double>(k) / fps;
+      if (!(t <= end)) break;
+      sim.advance(t - sim.time());
+      if (sim.status() != RunStatus::ok || sim.budget_exhausted()) return false;
+      if (sim.interrupted()) return true;
+      frame(sim);
+      // Between frames too: a step of dt may be longer than a frame, and then
+      // advance() never asks.
+      if (progress(sim)) return true;
+    }
+    if (sim.time() < end) sim.advance(end - sim.time());
+    return sim.interrupted();
+  });
 }
 
 }  // namespace neurocloth

@@ -4,6 +4,8 @@
 // far) once it is clear the run is not short, a progress line every few wall
 // seconds on stderr, and Ctrl-C ending it cleanly at the next frame with the
 // state reached kept. A second Ctrl-C kills the process as usual.
+#include <functional>
+
 #include "simulation.h"
 
 namespace neurocloth {
@@ -26,6 +28,17 @@ struct LongRunOutcome {
 // machine is: Ctrl-C stops between frames, and the frames taken are those of
 // an uninterrupted run (Simulation::set_interrupt).
 LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& options = {});
+
+// The same, stopping at every frame time start + k / fps (k = 1, 2, ... up to
+// start + seconds) to call `frame` there, then on to start + seconds. Each
+// stop lands exactly on its time (Simulation::advance ends on the time asked),
+// so the steps taken are cut at the frame times: the same as run_long's when
+// dt divides 1 / fps, otherwise a shorter step before each frame. Stops early,
+// with no further frame, when the run diverges, runs out of step budget or is
+// interrupted.
+LongRunOutcome run_long_frames(Simulation& sim, double seconds, double fps,
+                               const std::function<void(const Simulation&)>& frame,
+                               const LongRunOptions& options = {});
 
 // "42 s", "3.5 min", "2.1 h", "4.0 days", "3e+12 years".
 std::string human_duration(double seconds);

@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "input_error.h"
 #include "long_run.h"
+#include "motion_outputs.h"
 #include "result_json.h"
 #include "scene.h"
 #include "tradeoff/accuracy_choice.h"
@@ -114,8 +115,21 @@ int run_simulate(const SimulateOptions& o) {
   if (!(o.progress >= 0) || !std::isfinite(o.progress))
     throw InputError("command line", "--progress", "must be a finite number >= 0 (wall seconds)");
 
+  if (o.record_fps && !o.record && !o.export_pc2)
+    throw InputError("command line", "--record-fps", "needs --record FILE or --export-pc2 FILE");
+  // Opened before the run: a bad option or an unwritable path costs no run.
+  std::optional<MotionOutputs> motion;
+  if (o.record || o.export_pc2) motion.emplace(o, scene);
+
   Simulation sim = scene.make_simulation();
-  const LongRunOutcome run = run_long(sim, o.seconds, {o.progress});
+  LongRunOutcome run;
+  if (motion) {
+    motion->frame(sim);  // frame 0: the initial state
+    run = run_long_frames(sim, o.seconds, motion->fps(),
+                          [&](const Simulation& s) { motion->frame(s); }, {o.progress});
+  } else {
+    run = run_long(sim, o.seconds, {o.progress});
+  }
   sim.check_now();  // the result is checked in full, whatever the cadence
   const double wall = run.wall_seconds;
   nlohmann::json result = simulation_result(sim, scene.topology.numbering, o.scene, wall);
@@ -127,6 +141,12 @@ int run_simulate(const SimulateOptions& o) {
   const bool stopped_early =
       sim.status() == RunStatus::ok && sim.budget_exhausted() && !run.interrupted;
   result["step_budget_exhausted"] = stopped_early;
+  std::vector<std::string> motion_lines;
+  if (motion) {
+    motion->keep_until(sim);
+    result["motion"] = motion->result_json();
+    motion_lines = motion->finish(sim);
+  }
   write_json_atomically(o.out, result);
 
   const Energy e = sim.energy();
@@ -151,6 +171,8 @@ int run_simulate(const SimulateOptions& o) {
   if (run.interrupted)
     std::printf("  interrupted (Ctrl-C) at t = %.6g s of %.6g s; the state reached is written\n",
                 sim.time(), o.seconds);
+  for (const std::string& line : motion_lines)
+    std::printf("  %s\n", line.c_str());
   std::printf("  wrote %s\n", o.out.c_str());
   if (sim.status() != RunStatus::ok) return kExitDiverged;
   if (run.interrupted) return kExitInterrupted;

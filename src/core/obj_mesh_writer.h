@@ -9,7 +9,8 @@
 
 namespace neurocloth {
 
-// Throws std::runtime_error naming `path` when it cannot be written.
+// Throws std::runtime_error naming `path` when it cannot be written; written
+// through a temporary file renamed into place, so never half a file.
 void write_obj_mesh(const ClothTopology& topology, const std::string& path);
 
 }  // namespace neurocloth

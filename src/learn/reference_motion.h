@@ -7,6 +7,7 @@
 // Node numbers are the file's (RESULT.json's `positions` index, row * cols + col
 // for a grid), never the network's internal order: the learning stage maps
 // them through the scene's NodeNumbering. Formats: docs/learning.md.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,5 +31,27 @@ struct ReferenceMotion {
   // Observed node positions over all frames (each a 3-vector of data).
   std::size_t observations() const;
 };
+
+// Limits on what a reference file may hold: far above a real capture (2^25
+// node positions is 4096 nodes for 136 s at 60 frames per second), far below
+// what would exhaust memory. Checked before anything is allocated from a count
+// the file states.
+inline constexpr std::size_t kMaxReferenceBytes = std::size_t(1) << 30;  // 1 GiB
+inline constexpr std::size_t kMaxReferenceObservations = std::size_t(1) << 25;
+// A coordinate beyond 1000 km of the origin is a unit mistake (mm read as m
+// a million times over), and its square would overflow the fit's sums.
+inline constexpr double kMaxReferenceCoordinate = 1e6;  // m
+
+// True when every coordinate of `p` is finite and within kMaxReferenceCoordinate.
+bool reference_position_ok(const Vec3& p);
+
+// Reads a recording or a markers CSV, told apart by their first bytes (the
+// recording's magic line, else the CSV). `node_count` is the scene's: every
+// node must be below it, and a recording must hold exactly that many. Throws
+// InputError naming the file, the line (CSV) and the field on any bad input.
+ReferenceMotion read_reference(const std::string& path, std::size_t node_count);
+// The same on bytes already in memory; `path` names them in messages.
+ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
+                                std::size_t node_count);
 
 }  // namespace neurocloth

@@ -1,0 +1,51 @@
+#pragma once
+// What `simulate --record FILE` and `--export-pc2 FILE` write: the cloth's
+// positions at every frame time k / fps, in the file's node order, streamed to
+// a recording (src/learn/motion_recording.h) and a PC2 point cache with its
+// rest mesh (src/learn/pc2_writer.h). Both files appear only when the run has
+// ended and both are complete; a bad option or an unwritable path is refused
+// before the run starts.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "motion_recording.h"
+#include "pc2_writer.h"
+#include "scene.h"
+
+namespace neurocloth {
+
+class MotionOutputs {
+ public:
+  // Checks the options (InputError naming the option) and opens the files.
+  MotionOutputs(const SimulateOptions& options, const Scene& scene);
+
+  double fps() const { return fps_; }
+  // Adds the simulation's present state as the next frame. A state a file
+  // must not hold (a coordinate beyond kMaxReferenceCoordinate: a run blowing
+  // up between two divergence checks) ends the frames there, said at the end.
+  void frame(const Simulation& sim);
+  // After the run: keeps the frames up to `sim`'s time (a diverged run rolled
+  // back to its last good state, and frames after it go).
+  void keep_until(const Simulation& sim);
+  // What RESULT.json says of the frames ("motion").
+  nlohmann::json result_json() const;
+  // Writes the files into place; returns the lines to print.
+  std::vector<std::string> finish(const Simulation& sim);
+
+ private:
+  const Scene& scene_;
+  double fps_ = 60;
+  std::optional<RecordingWriter> recording_;
+  std::optional<Pc2Writer> pc2_;
+  std::string mesh_path_;
+  std::vector<double> times_;    // of the frames kept so far
+  std::size_t dropped_ = 0;      // frames after a divergence's rollback
+  std::string stopped_;          // why frames stopped before the run did
+  std::vector<Vec3> positions_;  // one frame in file order, reused
+};
+
+}  // namespace neurocloth

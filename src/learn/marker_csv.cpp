@@ -1,0 +1,193 @@
+#include "marker_csv.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include "input_error.h"
+
+namespace neurocloth {
+namespace {
+
+constexpr const char* kColumns[5] = {"time", "node", "x", "y", "z"};
+
+std::string_view trimmed(std::string_view s) {
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (!s.empty() && space(s.front()))
+    s.remove_prefix(1);
+  while (!s.empty() && space(s.back()))
+    s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  for (std::size_t at = 0;;) {
+    const std::size_t comma = line.find(',', at);
+    fields.push_back(
+        trimmed(line.substr(at, comma == std::string_view::npos ? comma : comma - at)));
+    if (comma == std::string_view::npos) return fields;
+    at = comma + 1;
+  }
+}
+
+bool same_name(std::string_view a, const char* b) {
+  std::size_t i = 0;
+  for (; i < a.size() && b[i]; ++i)
+    if ((a[i] | 0x20) != b[i]) return false;  // the names are lower-case letters
+  return i == a.size() && !b[i];
+}
+
+std::string shown(std::string_view s) {
+  return "'" + std::string(s.substr(0, 40)) + (s.size() > 40 ? "...'" : "'");
+}
+
+// Reads the rows one by one, building frames as their times go by.
+class MarkerReader {
+ public:
+  MarkerReader(const std::string& path, std::size_t node_count)
+      : path_(path), node_count_(node_count), seen_in_frame_(node_count, 0) {
+    motion_.path = path;
+    motion_.source = ReferenceMotion::Source::markers;
+  }
+
+  void header(std::string_view line, int line_number) {
+    const auto fields = split_fields(line);
+    bool ok = fields.size() == 5;
+    for (std::size_t i = 0; ok && i < 5; ++i)
+      ok = same_name(fields[i], kColumns[i]);
+    if (!ok)
+      throw InputError(path_, "header",
+                       "expected 'time,node,x,y,z' (or a recording), found " + shown(line),
+                       line_number);
+  }
+
+  void row(std::string_view line, int line_number) {
+    line_ = line_number;
+    const auto fields = split_fields(line);
+    if (fields.size() != 5)
+      throw InputError(
+          path_, fields.size() < 5 ? kColumns[fields.size()] : "after z",
+          "expected 5 fields (time,node,x,y,z), found " + std::to_string(fields.size()),
+          line_number);
+    const double time = number(fields[0], "time");
+    if (time < 0) throw InputError(path_, "time", "must be >= 0 (s from the start)", line_);
+    const std::size_t node = node_index(fields[1]);
+    const Vec3 p(coordinate(fields[2], "x"), coordinate(fields[3], "y"),
+                 coordinate(fields[4], "z"));
+
+    if (motion_.frames.empty() || time != motion_.frames.back().time) {
+      if (!motion_.frames.empty() && time < motion_.frames.back().time)
+        throw InputError(path_, "time",
+                         "goes back: " + std::string(fields[0]) + " s after " +
+                             std::to_string(motion_.frames.back().time) +
+                             " s (frames must come in increasing time, a frame's rows together)",
+                         line_);
+      motion_.frames.emplace_back();
+      motion_.frames.back().time = time;
+    }
+    ReferenceFrame& frame = motion_.frames.back();
+    // seen_in_frame_ holds the 1-based frame in which a node was last seen.
+    if (seen_in_frame_[node] == motion_.frames.size())
+      throw InputError(path_, "node",
+                       "node " + std::to_string(node) + " appears twice at time " +
+                           std::string(fields[0]) + " s",
+                       line_);
+    seen_in_frame_[node] = motion_.frames.size();
+    if (++observations_ > kMaxReferenceObservations)
+      throw InputError(path_, "",
+                       "more than " + std::to_string(kMaxReferenceObservations) +
+                           " observations: more than a reference may hold",
+                       line_);
+    frame.nodes.push_back(static_cast<std::int32_t>(node));
+    frame.positions.push_back(p);
+  }
+
+  ReferenceMotion finish(int last_line) {
+    if (motion_.frames.empty())
+      throw InputError(path_, "", "no rows: the header and no observations", last_line);
+    return std::move(motion_);
+  }
+
+ private:
+  double number(std::string_view field, const char* name) const {
+    const std::string s(field);
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size())
+      throw InputError(path_, name, "not a number: " + shown(field), line_);
+    // strtod reads "nan" and "inf", and overflows to infinity (ERANGE).
+    if (!std::isfinite(v)) throw InputError(path_, name, "NaN or infinite: " + shown(field), line_);
+    return v;
+  }
+
+  double coordinate(std::string_view field, const char* name) const {
+    const double v = number(field, name);
+    if (std::abs(v) > kMaxReferenceCoordinate)
+      throw InputError(path_, name,
+                       "beyond 1e6 m from the origin: " + shown(field) + " (a unit mistake?)",
+                       line_);
+    return v;
+  }
+
+  std::size_t node_index(std::string_view field) const {
+    // Any number strtod reads, as long as it is a whole one: some tools write
+    // every numeric column as "12.0".
+    const double v = number(field, "node");
+    if (v < 0) throw InputError(path_, "node", "negative: " + shown(field), line_);
+    if (v != std::floor(v))
+      throw InputError(path_, "node", "not a whole number: " + shown(field), line_);
+    if (!(v < static_cast<double>(node_count_)))
+      throw InputError(path_, "node",
+                       "unknown node " + shown(field) + ": the scene has " +
+                           std::to_string(node_count_) + " nodes (0 to " +
+                           std::to_string(node_count_ - 1) + ", numbered as the file's vertices)",
+                       line_);
+    return static_cast<std::size_t>(v);
+  }
+
+  const std::string& path_;
+  std::size_t node_count_;
+  ReferenceMotion motion_;
+  std::vector<std::size_t> seen_in_frame_;
+  std::size_t observations_ = 0;
+  int line_ = 0;
+};
+
+}  // namespace
+
+ReferenceMotion parse_marker_csv(const std::string& text, const std::string& path,
+                                 std::size_t node_count) {
+  if (node_count == 0) throw InputError(path, "", "the scene has no nodes to observe");
+  std::string_view rest(text);
+  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
+  MarkerReader reader(path, node_count);
+  bool have_header = false;
+  int line_number = 0;
+  while (!rest.empty()) {
+    const std::size_t eol = rest.find('\n');
+    const std::string_view line = trimmed(rest.substr(0, eol));
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+    if (line_number == std::numeric_limits<int>::max())
+      throw InputError(path, "", "too many lines", line_number);
+    ++line_number;
+    if (line.empty() || line.front() == '#') continue;
+    if (!have_header) {
+      reader.header(line, line_number);
+      have_header = true;
+    } else {
+      reader.row(line, line_number);
+    }
+  }
+  if (!have_header)
+    throw InputError(path, "header",
+                     "empty: expected the CSV header 'time,node,x,y,z' or a recording",
+                     line_number);
+  return reader.finish(line_number);
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,38 @@
+#include "reference_motion.h"
+
+#include <cmath>
+
+#include "input_error.h"
+#include "marker_csv.h"
+#include "motion_recording.h"
+#include "text_file.h"
+
+namespace neurocloth {
+
+std::size_t ReferenceMotion::observations() const {
+  std::size_t n = 0;
+  for (const ReferenceFrame& f : frames)
+    n += f.nodes.size();
+  return n;
+}
+
+bool reference_position_ok(const Vec3& p) {
+  // Written so that NaN fails too.
+  return std::abs(p.x()) <= kMaxReferenceCoordinate && std::abs(p.y()) <= kMaxReferenceCoordinate &&
+         std::abs(p.z()) <= kMaxReferenceCoordinate;
+}
+
+ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
+                                std::size_t node_count) {
+  // The magic line is unmistakable; anything else is read as CSV, whose
+  // reader names what it expected when the header is not there.
+  if (is_motion_recording(bytes)) return parse_motion_recording(bytes, path, node_count);
+  return parse_marker_csv(bytes, path, node_count);
+}
+
+ReferenceMotion read_reference(const std::string& path, std::size_t node_count) {
+  return parse_reference(read_text_file(path, "reference motion", kMaxReferenceBytes), path,
+                         node_count);
+}
+
+}  // namespace neurocloth

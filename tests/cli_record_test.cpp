@@ -1,0 +1,183 @@
+// simulate --record and --export-pc2, run as a user would.
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <random>
+
+#include "cli_fixture.h"
+#include "grid_builder.h"
+#include "mesh_node_order.h"
+#include "obj_mesh_writer.h"
+#include "reference_motion.h"
+#include "streamed_file.h"
+
+namespace neurocloth::cli_test {
+namespace {
+
+class CliRecord : public Cli {
+ protected:
+  std::string out(const std::string& name) const { return (out_dir() / name).string(); }
+
+  // Frame k of `m` against RESULT.json's positions: bit for bit.
+  static void expect_positions(const ReferenceFrame& frame, const json& positions) {
+    ASSERT_EQ(frame.positions.size(), positions.size());
+    for (std::size_t k = 0; k < positions.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        ASSERT_EQ(frame.positions[k][a], positions[k][a].get<double>())
+            << "file vertex " << k << " axis " << a;
+  }
+};
+
+// Every frame at exactly k / 60 s, frame 0 the initial state, the last one the
+// state RESULT.json holds; the PC2 cache holds the same frames as float32.
+TEST_F(CliRecord, RecordsEveryFrameAtExactTimesAndEndsOnTheResult) {
+  const Outcome r =
+      run({"simulate", scene_asset("hanging"), "--seconds", "0.5", "--out", result_path(),
+           "--record", out("run.motion"), "--export-pc2", out("run.pc2")});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("31 frames at 60 per second"), std::string::npos) << r.out;
+  std::vector<std::string> files = files_in_out_dir();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"result.json", "run.motion", "run.obj", "run.pc2"}));
+
+  const ReferenceMotion m = read_reference(out("run.motion"), 400);
+  ASSERT_EQ(m.frames.size(), 31u);
+  for (std::size_t k = 0; k < m.frames.size(); ++k)
+    EXPECT_EQ(m.frames[k].time, static_cast<double>(k) / 60.0) << "frame " << k;
+  const Scene scene = load_scene(scene_asset("hanging"));
+  const ClothState initial = scene.initial_state();
+  for (std::size_t k = 0; k < 400; ++k)
+    ASSERT_EQ(m.frames[0].positions[k], initial.position(k)) << k;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("time").get<double>(), 0.5);
+  expect_positions(m.frames.back(), doc.at("positions"));
+  EXPECT_EQ(doc.at("motion").at("frames").get<int>(), 31);
+
+  // The cache: 31 samples of 400 points, the last one the last frame's.
+  const std::string pc2 = read_text(out("run.pc2"));
+  ASSERT_EQ(pc2.size(), 32u + 31 * 400 * 12);
+  const auto le32 = [&](std::size_t at) {
+    return get_le32(reinterpret_cast<const unsigned char*>(&pc2[at]));
+  };
+  EXPECT_EQ(le32(16), 400u);
+  EXPECT_EQ(le32(28), 31u);
+  for (std::size_t k = 0; k < 400; k += 57)
+    for (int a = 0; a < 3; ++a) {
+      const std::uint32_t bits = le32(32 + (30 * 400 + k) * 12 + 4 * a);
+      float v;
+      std::memcpy(&v, &bits, 4);
+      EXPECT_EQ(v, static_cast<float>(m.frames.back().positions[k][a])) << k;
+    }
+}
+
+// Without --record the run takes the steps it always took; with it, a frame
+// time that is a whole number of steps changes nothing.
+TEST_F(CliRecord, FramesOnStepBoundariesLeaveTheRunAsItWas) {
+  ASSERT_EQ(
+      run({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out", result_path()}).code,
+      kOk);
+  const json plain = read_result();
+  ASSERT_EQ(run({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out", result_path(),
+                 "--record", out("r.motion"), "--record-fps", "50"})
+                .code,
+            kOk);
+  const json recorded = read_result();
+  EXPECT_EQ(recorded.at("steps"), plain.at("steps"));
+  EXPECT_EQ(recorded.at("positions"), plain.at("positions"));
+}
+
+// A mesh whose file scatters neighbours is renumbered at load; the recording
+// and the cache's mesh are in the file's vertex order all the same.
+TEST_F(CliRecord, AShuffledMeshIsRecordedInTheFilesVertexOrder) {
+  GridSpec g;
+  g.rows = g.cols = 10;
+  g.spacing = 0.05;
+  const ClothTopology grid = build_grid(g);
+  const int n = static_cast<int>(grid.rest_positions.size());
+  std::vector<std::int32_t> order(n);  // shuffled vertex k is grid node order[k]
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(12));
+  std::vector<int> vertex_of(n);
+  for (int k = 0; k < n; ++k)
+    vertex_of[order[k]] = k;
+  const ClothTopology shuffled = renumbered(grid, order);
+  write_obj_mesh(shuffled, (dir_ / "shuffled.obj").string());
+  const json scene = {
+      {"cloth",
+       {{"mesh", {{"obj", "shuffled.obj"}}},
+        {"springs", {"structural", "bend"}},
+        {"pins", {vertex_of[0], vertex_of[9]}}}},
+      {"material",
+       {{"spring_constant", 200.0}, {"node_mass", 0.01}, {"viscosity", 0.05}, {"friction", 0}}},
+      {"gravity", {0, -9.81, 0}},
+      {"solver", {{"integrator", "network"}, {"dt", 0.001}, {"adaptive", false}}}};
+  const std::string path = write("shuffled.json", scene.dump());
+  ASSERT_FALSE(load_scene(path).topology.numbering.identity()) << "the test needs a renumbering";
+
+  const Outcome r = run({"simulate", path, "--seconds", "0.2", "--out", result_path(), "--record",
+                         out("m.motion"), "--record-fps", "30", "--export-pc2", out("m.pc2")});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const ReferenceMotion m = read_reference(out("m.motion"), n);
+  ASSERT_EQ(m.frames.size(), 7u);
+  // Frame 0: vertex k of the file where the file put it (to the OBJ reader's
+  // rounding; tinyobjloader's decimal parser is not strtod).
+  for (int k = 0; k < n; ++k)
+    ASSERT_LT((m.frames[0].positions[k] - grid.rest_positions[order[k]]).norm(), 1e-15)
+        << "file vertex " << k;
+  expect_positions(m.frames.back(), read_result().at("positions"));
+  // The pinned vertices stayed, by file index.
+  for (int pin : {vertex_of[0], vertex_of[9]})
+    EXPECT_EQ(m.frames.back().positions[pin], m.frames[0].positions[pin]);
+  // The cache's mesh is the input file's vertex order.
+  const std::string obj = read_text(out("m.obj"));
+  std::size_t at = 0;
+  for (int k = 0; k < n; ++k) {
+    double x, y, z;
+    ASSERT_EQ(std::sscanf(obj.c_str() + at, "v %lf %lf %lf", &x, &y, &z), 3);
+    EXPECT_LT((Vec3(x, y, z) - grid.rest_positions[order[k]]).norm(), 1e-15) << "vertex " << k;
+    at = obj.find('\n', at) + 1;
+  }
+}
+
+TEST_F(CliRecord, ADivergedRunRecordsUpToTheLastGoodStateAndSaysSo) {
+  const Outcome r =
+      run({"simulate", scene_asset("hanging"), "--integrator", "explicit_euler", "--dt", "0.004",
+           "--seconds", "2", "--out", result_path(), "--record", out("d.motion")});
+  ASSERT_EQ(r.code, kDiverged) << r.err;
+  EXPECT_NE(r.out.find("the frames stop at the last good state"), std::string::npos) << r.out;
+  const json doc = read_result();
+  const ReferenceMotion m = read_reference(out("d.motion"), 400);
+  ASSERT_FALSE(m.frames.empty());
+  EXPECT_LE(m.frames.back().time, doc.at("time").get<double>());
+  EXPECT_EQ(doc.at("motion").at("frames").get<std::size_t>(), m.frames.size());
+}
+
+TEST_F(CliRecord, BadOptionsWriteNothing) {
+  const std::vector<std::string> base = {
+      "simulate", scene_asset("hanging"), "--seconds", "0.1",
+      "--out",    result_path(),          "--record",  out("r.motion")};
+  for (const char* fps : {"0", "-1", "nan", "inf", "10001"}) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), {"--record-fps", fps});
+    expect_input_error(args, {"--record-fps"});
+  }
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out",
+                      result_path(), "--record-fps", "30"},
+                     {"--record-fps"});
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out",
+                      result_path(), "--record", (dir_ / "no/such/dir/r.motion").string()},
+                     {"no/such/dir/r.motion"});
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out",
+                      result_path(), "--export-pc2", out("run.mdd")},
+                     {"--export-pc2", ".pc2"});
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.1", "--out",
+                      result_path(), "--record", result_path()},
+                     {"two outputs"});
+  // More frames than a recording may hold: refused before the run.
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "1e6", "--out",
+                      result_path(), "--record", out("r.motion"), "--record-fps", "10000"},
+                     {"--record", "node positions"});
+}
+
+}  // namespace
+}  // namespace neurocloth::cli_test

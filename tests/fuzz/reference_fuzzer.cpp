@@ -1,0 +1,60 @@
+// Fuzzes the reference motion reader, parse_reference(): a recording (binary
+// after a JSON header) or a markers CSV, told apart by the first bytes. An
+// accepted motion must hold what the learning stage relies on: at least one
+// frame, finite times >= 0 in strictly increasing order, every node below the
+// scene's count and once per frame, one finite position per node, and no more
+// observations than the documented limit.
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fuzz_contract.h"
+#include "reference_motion.h"
+
+namespace neurocloth::fuzz {
+namespace {
+
+// The scene the reference is read against: the seeds' node count.
+constexpr std::size_t kNodes = 4;
+
+void check_motion(const Contract& c, const ReferenceMotion& m) {
+  c.require(!m.frames.empty(), "a reference accepted with no frames");
+  c.require(m.observations() <= kMaxReferenceObservations, "more observations than the limit");
+  for (std::size_t f = 0; f < m.frames.size(); ++f) {
+    const ReferenceFrame& frame = m.frames[f];
+    const std::string at = "frame " + std::to_string(f) + " ";
+    c.finite(frame.time, at + "time");
+    c.require(frame.time >= 0, at + "time accepted < 0: " + show(frame.time));
+    if (f > 0)
+      c.require(frame.time > m.frames[f - 1].time,
+                at + "time " + show(frame.time) + " accepted after " + show(m.frames[f - 1].time));
+    c.require(!frame.nodes.empty(), at + "accepted with no nodes");
+    c.require(frame.nodes.size() == frame.positions.size(), at + "nodes and positions differ");
+    std::vector<bool> seen(kNodes, false);
+    for (std::size_t i = 0; i < frame.nodes.size(); ++i) {
+      const std::int32_t node = frame.nodes[i];
+      c.require(node >= 0 && static_cast<std::size_t>(node) < kNodes,
+                at + "node " + std::to_string(node) + " accepted");
+      if (node < 0 || static_cast<std::size_t>(node) >= kNodes) continue;
+      c.require(!seen[node], at + "node " + std::to_string(node) + " accepted twice");
+      seen[node] = true;
+      c.vector(frame.positions[i], at + "node " + std::to_string(node));
+    }
+    if (m.source == ReferenceMotion::Source::recording)
+      c.require(frame.nodes.size() == kNodes, at + "a recording frame without every node");
+  }
+}
+
+}  // namespace
+}  // namespace neurocloth::fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace neurocloth;
+  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  const auto motion = fuzz::accepted(
+      "reference", [&] { return parse_reference(bytes, "fuzz.reference", fuzz::kNodes); });
+  if (!motion) return 0;
+  fuzz::check_motion(fuzz::Contract("reference"), *motion);
+  return 0;
+}
