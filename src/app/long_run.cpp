@@ -1,5 +1,7 @@
 #include "long_run.h"
 
+#include <tuple>
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -135,26 +137,57 @@ LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& o
 }
 
 LongRunOutcome run_long_frames(Simulation& sim, double seconds, double fps,
-                               const std::function<void(const Simulation&)>& frame,
+                               const std::function<void(double, const ClothState&)>& frame,
                                const LongRunOptions& options) {
   const double start = sim.time(), end = start + seconds;
-  return run_watched(sim, seconds, options, [&](Progress& progress) {
-    for (long k = 1;; ++k) {
-      // k / fps, not a sum of 1 / fps: no drift however many frames. From a
-      // start of 0, time() - (k - 1) / fps is exact and so is the landing.
+  long k = 1;  // the next frame: start + k / fps (no drift however many frames)
+  ClothState before = sim.state(), between = sim.state();
+  // After each accepted step from t0 over h: the frames inside it.
+  auto stepped = [&](double t0, double h) {
+    const ClothState& after = sim.state();
+    for (;; ++k) {
       const double t = start + static_cast<double>(k) / fps;
-      if (!(t <= end)) break;
-      sim.advance(t - sim.time());
+      if (!(t <= end) || t > sim.time()) break;
+      if (t == sim.time()) {
+        frame(t, after);
+        continue;
+      }
+      const double a = (t - t0) / h, b = 1.0 - a;
+      for (auto [out, p, q] : {std::tuple{&between.x, &before.x, &after.x},
+                               {&between.y, &before.y, &after.y},
+                               {&between.z, &before.z, &after.z},
+                               {&between.vx, &before.vx, &after.vx},
+                               {&between.vy, &before.vy, &after.vy},
+                               {&between.vz, &before.vz, &after.vz}})
+        for (std::size_t i = 0; i < out->size(); ++i)
+          (*out)[i] = b * (*p)[i] + a * (*q)[i];
+      frame(t, between);
+    }
+    before = after;
+  };
+  const bool adaptive = sim.settings().adaptive;
+  if (adaptive)
+    sim.set_observer([&](const StepEvent& e) {
+      if (e.accepted) stepped(e.time, e.step);
+    });
+  const LongRunOutcome out = run_watched(sim, seconds, options, [&](Progress& progress) {
+    if (adaptive) {
+      sim.advance(seconds);
+      return sim.interrupted();
+    }
+    // Fixed steps one call each: advance(k dt) takes the same steps however it
+    // is split (Simulation::advance).
+    while (sim.time() < end) {
+      const double t0 = sim.time();
+      sim.advance(std::min(sim.settings().dt, end - t0));
       if (sim.status() != RunStatus::ok || sim.budget_exhausted()) return false;
-      if (sim.interrupted()) return true;
-      frame(sim);
-      // Between frames too: a step of dt may be longer than a frame, and then
-      // advance() never asks.
+      stepped(t0, sim.time() - t0);
       if (progress(sim)) return true;
     }
-    if (sim.time() < end) sim.advance(end - sim.time());
-    return sim.interrupted();
+    return false;
   });
+  sim.set_observer({});
+  return out;
 }
 
 }  // namespace neurocloth

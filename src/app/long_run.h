@@ -29,15 +29,16 @@ struct LongRunOutcome {
 // an uninterrupted run (Simulation::set_interrupt).
 LongRunOutcome run_long(Simulation& sim, double seconds, const LongRunOptions& options = {});
 
-// The same, stopping at every frame time start + k / fps (k = 1, 2, ... up to
-// start + seconds) to call `frame` there, then on to start + seconds. Each
-// stop lands exactly on its time (Simulation::advance ends on the time asked),
-// so the steps taken are cut at the frame times: the same as run_long's when
-// dt divides 1 / fps, otherwise a shorter step before each frame. Stops early,
-// with no further frame, when the run diverges, runs out of step budget or is
-// interrupted.
+// The same, calling `frame(t, state)` at every frame time t = start + k / fps
+// (k = 1, 2, ... up to start + seconds). Recording changes nothing of the run:
+// it takes exactly run_long's steps, and a frame time inside a step [t0, t0 + h]
+// gets the positions and velocities (1 - a) s(t0) + a s(t0 + h), a = (t - t0) / h:
+// the simulated state at that time as the fit reads it (rollout.h,
+// ObservationPlan), so a fit to its own recording has nothing left to explain.
+// A frame on a step's end is that state, bit for bit. Stops early, with no
+// further frame, when the run diverges, runs out of step budget or is interrupted.
 LongRunOutcome run_long_frames(Simulation& sim, double seconds, double fps,
-                               const std::function<void(const Simulation&)>& frame,
+                               const std::function<void(double, const ClothState&)>& frame,
                                const LongRunOptions& options = {});
 
 // "42 s", "3.5 min", "2.1 h", "4.0 days", "3e+12 years".

@@ -47,9 +47,8 @@ MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : sce
   positions_.resize(nodes);
 }
 
-void MotionOutputs::frame(const Simulation& sim) {
+void MotionOutputs::frame(double t, const ClothState& s) {
   if (!stopped_.empty()) return;
-  const ClothState& s = sim.state();
   for (std::size_t k = 0; k < positions_.size(); ++k) {
     positions_[k] =
         s.position(static_cast<std::size_t>(scene_.topology.numbering.node(static_cast<int>(k))));
@@ -58,14 +57,14 @@ void MotionOutputs::frame(const Simulation& sim) {
       std::snprintf(buf, sizeof buf,
                     "frames stop before t = %.6g s: node %zu is beyond 1e6 m from the origin "
                     "there (a run blowing up?)",
-                    sim.time(), k);
+                    t, k);
       stopped_ = buf;
       return;
     }
   }
-  if (recording_) recording_->add_frame(sim.time(), positions_);
+  if (recording_) recording_->add_frame(t, positions_);
   if (pc2_) pc2_->add_frame(positions_);
-  times_.push_back(sim.time());
+  times_.push_back(t);
 }
 
 void MotionOutputs::keep_until(const Simulation& sim) {

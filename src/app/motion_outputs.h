@@ -24,10 +24,10 @@ class MotionOutputs {
   MotionOutputs(const SimulateOptions& options, const Scene& scene);
 
   double fps() const { return fps_; }
-  // Adds the simulation's present state as the next frame. A state a file
+  // Adds `state`, the cloth at time t, as the next frame. A state a file
   // must not hold (a coordinate beyond kMaxReferenceCoordinate: a run blowing
   // up between two divergence checks) ends the frames there, said at the end.
-  void frame(const Simulation& sim);
+  void frame(double t, const ClothState& state);
   // After the run: keeps the frames up to `sim`'s time (a diverged run rolled
   // back to its last good state, and frames after it go).
   void keep_until(const Simulation& sim);

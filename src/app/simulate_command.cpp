@@ -124,9 +124,10 @@ int run_simulate(const SimulateOptions& o) {
   Simulation sim = scene.make_simulation();
   LongRunOutcome run;
   if (motion) {
-    motion->frame(sim);  // frame 0: the initial state
-    run = run_long_frames(sim, o.seconds, motion->fps(),
-                          [&](const Simulation& s) { motion->frame(s); }, {o.progress});
+    motion->frame(sim.time(), sim.state());  // frame 0: the initial state
+    run =
+        run_long_frames(sim, o.seconds, motion->fps(),
+                        [&](double t, const ClothState& s) { motion->frame(t, s); }, {o.progress});
   } else {
     run = run_long(sim, o.seconds, {o.progress});
   }
