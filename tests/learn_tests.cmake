@@ -1,15 +1,18 @@
 # The learning stage (label learn): reference motions (recordings, markers) and
-# their exports, the adjoint's gradient, fits.
+# their exports, the adjoint's gradient, the optimiser, the uncertainty, the
+# fitted scene and its side file, fits.
 add_executable(learn_tests motion_recording_test.cpp marker_csv_test.cpp pc2_writer_test.cpp
-  learn_gradient_test.cpp)
+  learn_gradient_test.cpp optimizer_test.cpp uncertainty_test.cpp fitted_output_test.cpp
+  element_weights_test.cpp)
 target_link_libraries(learn_tests PRIVATE neurocloth_learn neurocloth_core
   nlohmann_json::nlohmann_json GTest::gtest_main)
+target_compile_options(learn_tests PRIVATE $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
 target_compile_definitions(learn_tests PRIVATE NEUROCLOTH_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tmp"
   NEUROCLOTH_TEST_DATA="${CMAKE_CURRENT_SOURCE_DIR}/data")
 gtest_discover_tests(learn_tests PROPERTIES LABELS learn DISCOVERY_TIMEOUT 60)
 
-# simulate --record and --export-pc2, run as a user would.
-add_executable(cli_record_tests cli_record_test.cpp)
+# simulate --record and --export-pc2, and fit, run as a user would.
+add_executable(cli_record_tests cli_record_test.cpp cli_fit_test.cpp)
 target_link_libraries(cli_record_tests PRIVATE neurocloth_learn neurocloth_core
   nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_definitions(cli_record_tests PRIVATE NEUROCLOTH_CLI="$<TARGET_FILE:neurocloth-cli>"

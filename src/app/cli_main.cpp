@@ -1,5 +1,5 @@
 // neurocloth-cli: batch access to the simulation core (simulate, relax, bench,
-// material, tradeoff) and headless snapshots (snapshot).
+// material, tradeoff, fit) and headless snapshots (snapshot).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -99,6 +99,38 @@ int main(int argc, char** argv) {
     if (mat.rules.empty() && !mat.preset) throw CLI::RequiredError("--rules or --preset");
   });
 
+  FitOptions fit;
+  auto* fit_cmd = app.add_subcommand(
+      "fit", "Fit the network's weights to a reference motion; write FITTED.json and its curves");
+  fit_cmd->add_option("scene", fit.scene, "Scene file (JSON)")->required();
+  fit_cmd
+      ->add_option("--reference", fit.reference,
+                   "The motion to fit: a recording (simulate --record) or a marker CSV "
+                   "(time,node,x,y,z)")
+      ->required();
+  fit_cmd
+      ->add_option("--params", fit.params,
+                   "What to fit, comma-separated (default spring_constant,viscosity; "
+                   "docs/learning.md lists the names)")
+      ->delimiter(',');
+  fit_cmd->add_flag("--per-element", fit.per_element,
+                    "One weight per spring and node instead of one per family");
+  fit_cmd->add_option("--smoothness", fit.smoothness,
+                      "Strength of the smoothness regulariser on per-element weights (default 0)");
+  fit_cmd->add_option("--optimizer", fit.optimizer, "lbfgs (default) | gd (gradient descent)");
+  fit_cmd->add_option("--max-iterations", fit.max_iterations, "At most this many (default 100)");
+  fit_cmd->add_option("--time-budget", fit.time_budget,
+                      "Stop after this many wall seconds (default: none)");
+  fit_cmd->add_option("--tape-budget", fit.tape_budget_mb,
+                      "MB the stored states may take before segments are recomputed (default 512)");
+  fit_cmd->add_option("--out", fit.out, "FITTED.json (also FITTED.loss.csv, FITTED.loss.png)")
+      ->required();
+  fit_cmd->add_flag("--online", fit.online,
+                    "Adapt the weights while the reference plays (truncated BPTT per window)");
+  fit_cmd->add_option("--window", fit.window, "Online: steps per back-propagation window (50)");
+  fit_cmd->add_option("--learning-rate", fit.learning_rate,
+                      "Online: the largest change of one parameter per window, log units (0.05)");
+
 #ifdef NEUROCLOTH_HAS_SNAPSHOT
   SnapshotOptions snap;
   auto* snapshot = app.add_subcommand(
@@ -132,6 +164,7 @@ int main(int argc, char** argv) {
     if (*relax) return run_relax(rel);
     if (*bench_cmd) return run_bench(bench);
     if (*material) return run_material(mat);
+    if (*fit_cmd) return run_fit(fit);
 #ifdef NEUROCLOTH_HAS_SNAPSHOT
     if (*snapshot) return run_snapshot(snap);
 #endif

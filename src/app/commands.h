@@ -107,4 +107,30 @@ struct SnapshotOptions {
 };
 int run_snapshot(const SnapshotOptions& options);
 
+// Fits the network's weights to a reference motion (paper eq. 18-19) and writes
+// FITTED.json (a scene simulate and the viewer load as is), its side file of
+// per-element weights, FITTED.loss.csv and FITTED.loss.png (docs/learning.md).
+// Exit codes: 0 the fit stopped at a tolerance, a budget or a failed line
+// search (the best parameters are written); 3 a loss or gradient came back
+// NaN (the best parameters before it are written); 130 Ctrl-C (the best so far
+// written); 1 bad input (nothing written).
+struct FitOptions {
+  std::string scene;
+  std::string reference;            // --reference: a recording or a marker CSV
+  std::vector<std::string> params;  // --params a,b,...; empty: spring_constant, viscosity
+  bool per_element = false;         // --per-element
+  double smoothness = 0;            // --smoothness: the per-element regulariser's strength
+  std::string optimizer = "lbfgs";  // --optimizer lbfgs | gd
+  int max_iterations = 100;         // --max-iterations, >= 1
+  double time_budget = 0;           // --time-budget, wall seconds; 0: none
+  double tape_budget_mb = 512;      // --tape-budget, MB of checkpoints
+  std::string out;                  // --out FITTED.json
+  bool online = false;              // --online: fit while the motion plays (fit_online.cpp)
+  int window = 50;                  // --window: steps per online window (W)
+  double learning_rate = 0.05;      // --learning-rate: online step per window (log units)
+};
+int run_fit(const FitOptions& options);
+// The online mode (--online), in fit_online.cpp.
+int run_fit_online(const FitOptions& options);
+
 }  // namespace neurocloth

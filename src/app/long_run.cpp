@@ -15,29 +15,6 @@ extern "C" void on_interrupt(int) {
   g_interrupted = 1;
 }
 
-// Catches the first Ctrl-C while alive (SA_RESETHAND: the second one gets the
-// default action and ends the process) and puts back what was there before.
-class InterruptScope {
- public:
-  InterruptScope() {
-    g_interrupted = 0;
-    struct sigaction action {};
-    action.sa_handler = on_interrupt;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    installed_ = sigaction(SIGINT, &action, &previous_) == 0;
-  }
-  ~InterruptScope() {
-    if (installed_) sigaction(SIGINT, &previous_, nullptr);
-  }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  struct sigaction previous_ {};
-  bool installed_ = false;
-};
-
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) {
@@ -92,6 +69,23 @@ class Progress {
 };
 
 }  // namespace
+
+InterruptScope::InterruptScope() {
+  g_interrupted = 0;
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  installed_ = sigaction(SIGINT, &action, &previous_) == 0;
+}
+
+InterruptScope::~InterruptScope() {
+  if (installed_) sigaction(SIGINT, &previous_, nullptr);
+}
+
+bool InterruptScope::interrupted() {
+  return g_interrupted != 0;
+}
 
 std::string human_duration(double s) {
   char buf[48];

@@ -4,6 +4,7 @@
 // far) once it is clear the run is not short, a progress line every few wall
 // seconds on stderr, and Ctrl-C ending it cleanly at the next frame with the
 // state reached kept. A second Ctrl-C kills the process as usual.
+#include <csignal>
 #include <functional>
 
 #include "simulation.h"
@@ -13,6 +14,23 @@ namespace neurocloth {
 // Exit code of a run that Ctrl-C ended (the shell's convention for SIGINT);
 // the result is still written, at the time reached.
 inline constexpr int kExitInterrupted = 130;
+
+// Catches the first Ctrl-C while alive (SA_RESETHAND: the second one gets the
+// default action and ends the process) and puts back what was there before.
+// run_long holds one; so does `fit`, which asks interrupted() between evaluations.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+  // Whether Ctrl-C was pressed since the innermost scope began.
+  static bool interrupted();
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
+};
 
 struct LongRunOptions {
   // Wall seconds between progress lines; 0: none (and no estimate either).

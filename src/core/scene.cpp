@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "element_weights.h"
 #include "fuzzy_material.h"
 #include "grid_builder.h"
 #include "json_fields.h"
@@ -256,7 +257,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   const JsonFields in(text, path);
   const json& root = in.root();
   in.allow_only(root, "",
-                {"name", "description", "cloth", "material", "gravity", "solver", "modules"});
+                {"name", "description", "cloth", "material", "gravity", "solver", "modules",
+                 "element_weights", "fitted"});
   Scene scene;
   scene.path = path;
   scene.name =
@@ -283,6 +285,20 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   scene.solver = read_solver(in, root);
   if (in.has(root, "modules"))
     scene.modules = read_modules(in, root.at("modules"), scene.topology, scene.pins);
+  // What a fit wrote about itself: a note for people, checked only for being one.
+  if (in.has(root, "fitted")) in.require_object(root.at("fitted"), "fitted");
+  if (in.has(root, "element_weights")) {
+    const std::string file =
+        resolve_path(path, in.string(root.at("element_weights"), "element_weights"));
+    try {
+      scene.element_weights =
+          std::make_shared<const ElementWeights>(read_element_weights(file, scene.topology));
+    } catch (const InputError& e) {  // name the side file (where the problem is) and who named it
+      throw InputError(e.file(), e.field(),
+                       e.message() + " (named by " + path + ", field 'element_weights')", e.line(),
+                       e.column());
+    }
+  }
   return scene;
 }
 
@@ -300,6 +316,7 @@ Scene resized_grid(const Scene& scene, int n) {
   g.families = SpringFamilies{};
   s.grid = g;
   s.topology = build_grid(g);
+  s.element_weights.reset();                     // they were the old grid's springs and nodes
   if (!scene.pins.empty()) s.pins = {0, n - 1};  // a free cloth (a drape) stays free
   // Node indices of the old grid mean nothing on the new one: moving pins move the new pins.
   for (ModuleDeclaration& m : s.modules)
@@ -319,6 +336,7 @@ ClothNetwork Scene::build_network() const {
         share.push_back(a / FuzzyMaterial::kReferenceNodeArea);
   }
   ClothNetwork net = ClothNetwork::build(topology, material, spring_function, std::move(share));
+  if (element_weights) element_weights->apply_to(net);
   net.gravity = gravity;
   for (int p : pins)
     net.set_pinned(p, true);

@@ -19,6 +19,7 @@
 namespace neurocloth {
 
 class FuzzyMaterial;
+struct ElementWeights;
 
 struct Scene {
   std::string path;  // the file it came from ("" when parsed from text)
@@ -43,6 +44,10 @@ struct Scene {
   SolverSettings solver;
   // The declared modules, in file order; none unless the file has "modules".
   std::vector<ModuleDeclaration> modules;
+  // Per-element weights from the side file the scene names under
+  // "element_weights" (a fit's output, element_weights.h): applied over the
+  // material's when the network is built. Read once and shared, like the rule base.
+  std::shared_ptr<const ElementWeights> element_weights;
 
   // The bare network: springs, masses, gravity, pins (no modules).
   ClothNetwork build_network() const;

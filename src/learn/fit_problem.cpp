@@ -97,6 +97,8 @@ struct FitProblem::Impl {
   std::vector<FitBlock> blocks;
   std::size_t size = 0;
   std::unique_ptr<Rollout> rollout;
+  StepPlan steps;            // the whole run's
+  ObservationPlan observed;  // the whole run's
   RolloutGradients gradients;
   double duration = 0;
 
@@ -338,6 +340,8 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
     }
     obs.frames.push_back(fr);
   }
+  this->steps = steps;
+  observed = obs;
   rollout = std::make_unique<Rollout>(scene.initial_state(), std::move(steps), std::move(obs),
                                       settings.tape_budget_bytes);
 }
@@ -532,6 +536,44 @@ double FitProblem::loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient)
   }
   m.chain(theta, *gradient);
   return data + m.regulariser(theta, gradient);
+}
+
+double FitProblem::window_loss(const Eigen::VectorXd& theta, const ClothState& state,
+                               std::size_t first, std::size_t count, Eigen::VectorXd* gradient,
+                               ClothState* end) {
+  Impl& m = *impl_;
+  if (first >= m.steps.count() || count == 0)
+    throw std::invalid_argument("FitProblem::window_loss: no such steps");
+  count = std::min(count, m.steps.count() - first);
+  m.apply(theta);
+  Rollout window(state, window_of(m.steps, first, count), window_of(m.observed, first, count),
+                 m.settings.tape_budget_bytes);
+  const double data = window.run(m.model, gradient ? &m.gradients : nullptr);
+  if (end) *end = window.final_state();
+  if (gradient) {
+    if (std::isfinite(data))
+      m.chain(theta, *gradient);
+    else
+      gradient->setConstant(static_cast<Eigen::Index>(m.size), std::nan(""));
+  }
+  return data;
+}
+
+std::size_t FitProblem::window_observations(std::size_t first, std::size_t count) const {
+  std::size_t n = 0;
+  for (const ObservationPlan::Frame& f : impl_->observed.frames)
+    if (f.step >= first && f.step < first + count) n += f.count;
+  return n;
+}
+
+std::size_t FitProblem::step_count() const {
+  return impl_->steps.count();
+}
+double FitProblem::step_time(std::size_t k) const {
+  return impl_->steps.start.at(k);
+}
+ClothState FitProblem::initial_state() const {
+  return impl_->scene.initial_state();
 }
 
 double FitProblem::rms_error(const Eigen::VectorXd& theta) {

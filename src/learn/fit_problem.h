@@ -73,6 +73,19 @@ class FitProblem {
   // Largest tape (checkpoints and one segment) the last loss() held, bytes.
   std::size_t peak_tape_bytes() const;
 
+  // Online adaptation (truncated back-propagation through time): the data term
+  // over the `count` steps from step `first`, run from `state` (the running
+  // cloth's, not the scene's start) at theta, with its gradient when asked.
+  // `end` receives the state after those steps. The regulariser is not in it.
+  double window_loss(const Eigen::VectorXd& theta, const ClothState& state, std::size_t first,
+                     std::size_t count, Eigen::VectorXd* gradient, ClothState* end);
+  // Observed positions in steps [first, first + count).
+  std::size_t window_observations(std::size_t first, std::size_t count) const;
+  std::size_t step_count() const;         // steps of the whole plan
+  double step_time(std::size_t k) const;  // when step k starts
+  // The scene's initial state (where the whole plan starts).
+  ClothState initial_state() const;
+
   // The scene with theta's family values written into its material and
   // modules (the material becomes numeric). Per-element blocks are not in it:
   // see element_weights.

@@ -191,6 +191,7 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
       std::swap(cur, next);
     }
   }
+  final_ = t.states[g && keep_all ? T : (T % 2 == 0 ? 0 : 1)];
   std::size_t bytes = 0;
   for (const auto* list : {&t.checkpoints, &t.states, &t.pre})
     for (const ClothState& s : *list)
@@ -223,6 +224,30 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
     }
   }
   return E;
+}
+
+StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count) {
+  StepPlan w;
+  const auto a = static_cast<std::ptrdiff_t>(first), b = static_cast<std::ptrdiff_t>(first + count);
+  w.start.assign(plan.start.begin() + a, plan.start.begin() + b);
+  w.size.assign(plan.size.begin() + a, plan.size.begin() + b);
+  return w;
+}
+
+ObservationPlan window_of(const ObservationPlan& obs, std::size_t first, std::size_t count) {
+  ObservationPlan w;
+  for (const ObservationPlan::Frame& f : obs.frames) {
+    if (f.step < first || f.step >= first + count) continue;
+    ObservationPlan::Frame g = f;
+    g.step -= first;
+    g.first = w.nodes.size();
+    w.nodes.insert(w.nodes.end(), obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first),
+                   obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first + f.count));
+    w.targets.insert(w.targets.end(), obs.targets.begin() + static_cast<std::ptrdiff_t>(f.first),
+                     obs.targets.begin() + static_cast<std::ptrdiff_t>(f.first + f.count));
+    w.frames.push_back(g);
+  }
+  return w;
 }
 
 StepPlan plan_steps(const Scene& scene, double duration) {

@@ -70,6 +70,8 @@ class Rollout {
   // With `gradients`, runs backward too and sets them (sized for the model).
   double run(const RolloutModel& model, RolloutGradients* gradients);
 
+  // The state after the last step of the last run.
+  const ClothState& final_state() const { return final_; }
   // The positions compared with each observation at the last run (m).
   const std::vector<Vec3>& compared() const { return compared_; }
   // Largest memory the tape held in a run so far (checkpoints + a segment), bytes.
@@ -94,10 +96,17 @@ class Rollout {
   std::size_t segment_ = 0;
   std::size_t peak_bytes_ = 0;
   std::vector<Vec3> compared_;
+  ClothState final_;
   // For each step, the frames that compare states k and k+1.
   std::vector<std::size_t> frames_of_step_begin_;
   std::unique_ptr<Tape> tape_;
 };
+
+// The part of `plan` and `observations` in steps [first, first + count),
+// renumbered from 0: a window for truncated back-propagation (online fits).
+StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count);
+ObservationPlan window_of(const ObservationPlan& observations, std::size_t first,
+                          std::size_t count);
 
 // The plan a scene's solver takes to `duration`: fixed steps as
 // Simulation::advance takes them, or (adaptive) the steps it accepted, run

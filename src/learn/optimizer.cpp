@@ -1,0 +1,280 @@
+#include "optimizer.h"
+
+#include <LBFGS.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+
+namespace neurocloth {
+namespace {
+
+using Vector = Eigen::VectorXd;
+
+// Thrown through LBFGSpp (or the descent loop) to end the run: the driver has
+// already kept the best point, this carries why.
+struct Stop {
+  StopReason reason;
+  std::string message;
+};
+// The objective itself threw: passed on once the run is unwound.
+struct ObjectiveThrew {};
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// What both methods share: every evaluation goes through evaluate() (the best
+// point, the budgets, NaN), every accepted point through accept() (history,
+// callback, the stop tests).
+class Driver {
+ public:
+  Driver(const Objective& objective, const OptimizerOptions& options,
+         const IterationCallback& callback)
+      : objective_(objective), options_(options), callback_(callback) {
+    if (!options_.clock)
+      options_.clock = [] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+      };
+    start_ = options_.clock();
+    result_.best_loss = std::numeric_limits<double>::quiet_NaN();
+  }
+
+  double evaluate(const Vector& theta, Vector* gradient) {
+    if (options_.should_stop && options_.should_stop())
+      throw Stop{StopReason::stopped, "stopped on request"};
+    if (options_.time_budget > 0 && elapsed() >= options_.time_budget)
+      throw Stop{StopReason::time_budget,
+                 "the time budget of " + number(options_.time_budget) + " s ran out"};
+    double loss = 0;
+    try {
+      loss = objective_(theta, gradient);
+    } catch (...) {
+      thrown_ = std::current_exception();
+      throw ObjectiveThrew{};
+    }
+    ++result_.evaluations;
+    if (result_.best_theta.size() == 0) result_.best_theta = theta;  // the start, at least
+    const bool finite_gradient = !gradient || gradient->allFinite();
+    if (!std::isfinite(loss) || !finite_gradient)
+      throw Stop{StopReason::not_finite,
+                 std::string(std::isfinite(loss) ? "the gradient" : "the loss") + " came back " +
+                     (std::isnan(loss) ? "NaN" : "not finite") + " at evaluation " +
+                     std::to_string(result_.evaluations)};
+    if (!(loss >= result_.best_loss)) {  // also when best_loss is still NaN
+      result_.best_loss = loss;
+      result_.best_theta = theta;
+    }
+    return loss;
+  }
+
+  // The point the current iteration ended at (the start for iteration 0).
+  void accept(const Vector& theta, double loss, const Vector& gradient) {
+    const int k = result_.iterations;
+    const double seconds = elapsed();
+    result_.history.push_back({k, loss, result_.evaluations, seconds});
+    if (callback_ && !callback_({k, loss, result_.evaluations, seconds, theta}))
+      throw Stop{StopReason::stopped, "stopped on request after iteration " + std::to_string(k)};
+    if (loss <= options_.loss_tolerance)
+      throw Stop{StopReason::loss_small, "the loss " + number(loss) + " is within the tolerance " +
+                                             number(options_.loss_tolerance)};
+    if (gradient.norm() <= options_.gradient_tolerance)
+      throw Stop{StopReason::gradient_small, "the gradient's norm " + number(gradient.norm()) +
+                                                 " is within the tolerance " +
+                                                 number(options_.gradient_tolerance)};
+    const int w = options_.stall_iterations;
+    if (w > 0 && k >= w) {
+      const double before = result_.history[result_.history.size() - 1 - w].loss;
+      if (before - loss <= options_.stall_tolerance * std::abs(loss))
+        throw Stop{StopReason::stalled, "the loss fell by less than " +
+                                            number(options_.stall_tolerance * 100) + "% over " +
+                                            std::to_string(w) + " iterations"};
+    }
+    if (k >= options_.max_iterations)
+      throw Stop{
+          StopReason::iteration_budget,
+          "the budget of " + std::to_string(options_.max_iterations) + " iterations ran out"};
+    if (options_.time_budget > 0 && seconds >= options_.time_budget)
+      throw Stop{StopReason::time_budget,
+                 "the time budget of " + number(options_.time_budget) + " s ran out"};
+    ++result_.iterations;
+  }
+
+  OptimizerResult finish(StopReason reason, std::string why) {
+    if (thrown_) std::rethrow_exception(thrown_);
+    result_.reason = reason;
+    result_.seconds = elapsed();
+    // accept() counts an iteration only once it passed every test.
+    if (!result_.history.empty()) result_.iterations = result_.history.back().iteration;
+    if (std::isnan(result_.best_loss))
+      result_.message = why + "; no evaluation had a finite loss, the start point is returned";
+    else
+      result_.message =
+          why + "; the best parameters seen (loss " + number(result_.best_loss) + ") are kept";
+    return result_;
+  }
+
+  const OptimizerOptions& options() const { return options_; }
+
+ private:
+  double elapsed() const { return options_.clock() - start_; }
+
+  const Objective& objective_;
+  OptimizerOptions options_;
+  const IterationCallback& callback_;
+  double start_ = 0;
+  OptimizerResult result_;
+  std::exception_ptr thrown_;
+};
+
+// LBFGSpp's interface to the objective, with the hook its iterations end in.
+struct LbfgsObjective {
+  Driver& driver;
+  bool started = false;
+
+  double operator()(const Vector& theta, Vector& gradient) {
+    const double loss = driver.evaluate(theta, &gradient);
+    if (!started) {  // LBFGSpp's first evaluation is the start point
+      started = true;
+      driver.accept(theta, loss, gradient);
+    }
+    return loss;
+  }
+};
+
+// LBFGSpp's backtracking line search, and then the end of the iteration (it
+// has no callback of its own; a line search ends every iteration).
+template <typename Scalar>
+class LineSearchThenHook {
+ public:
+  template <typename Foo>
+  static void LineSearch(Foo& f, Scalar& fx, Vector& x, Vector& grad, Scalar& step,
+                         const Vector& drt, const Vector& xp,
+                         const LBFGSpp::LBFGSParam<Scalar>& param) {
+    LBFGSpp::LineSearchBacktracking<Scalar>::LineSearch(f, fx, x, grad, step, drt, xp, param);
+    f.driver.accept(x, fx, grad);
+  }
+};
+
+void run_lbfgs(Driver& driver, const Vector& start) {
+  LBFGSpp::LBFGSParam<double> param;
+  param.m = driver.options().lbfgs_memory;
+  param.epsilon = driver.options().gradient_tolerance;
+  param.epsilon_rel = 0;
+  param.past = 0;            // the stall test is the driver's
+  param.max_iterations = 0;  // so is the budget
+  param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE;
+  param.max_linesearch = 40;
+  LBFGSpp::LBFGSSolver<double, LineSearchThenHook> solver(param);
+  LbfgsObjective f{driver};
+  Vector x = start;
+  double fx = 0;
+  solver.minimize(f, x, fx);
+}
+
+// Plain gradient descent with the Armijo backtracking rule (header comment).
+void run_gradient_descent(Driver& driver, const Vector& start) {
+  constexpr double kArmijo = 1e-4;
+  Vector x = start, g(start.size()), trial_g(start.size());
+  double f = driver.evaluate(x, &g);
+  driver.accept(x, f, g);
+  double step = 1 / g.norm();  // a first trial of unit length in theta
+  for (;;) {
+    const double slope = g.squaredNorm();
+    for (;;) {
+      const Vector trial = x - step * g;
+      const double trial_f = driver.evaluate(trial, &trial_g);
+      if (trial_f <= f - kArmijo * step * slope) {
+        x = trial;
+        f = trial_f;
+        g.swap(trial_g);
+        break;
+      }
+      step *= 0.5;
+      if (step * std::sqrt(slope) <= 1e-15 * (1 + x.norm()))
+        throw Stop{StopReason::line_search_failed,
+                   "no step along the gradient lowered the loss (the step fell below rounding)"};
+    }
+    driver.accept(x, f, g);
+    step *= 2;
+  }
+}
+
+void check(const OptimizerOptions& o) {
+  if (o.max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
+  if (!(o.time_budget >= 0)) throw std::invalid_argument("the time budget must be >= 0");
+  if (!(o.loss_tolerance >= 0) || !(o.gradient_tolerance >= 0) || !(o.stall_tolerance >= 0) ||
+      o.stall_iterations < 0)
+    throw std::invalid_argument("tolerances must be >= 0");
+  if (o.lbfgs_memory < 1) throw std::invalid_argument("lbfgs_memory must be at least 1");
+}
+
+}  // namespace
+
+bool parse_optimizer_method(const std::string& name, OptimizerMethod& method) {
+  if (name == "lbfgs")
+    method = OptimizerMethod::lbfgs;
+  else if (name == "gd")
+    method = OptimizerMethod::gradient_descent;
+  else
+    return false;
+  return true;
+}
+
+const char* to_string(OptimizerMethod m) {
+  return m == OptimizerMethod::lbfgs ? "lbfgs" : "gd";
+}
+
+const char* to_string(StopReason r) {
+  switch (r) {
+    case StopReason::loss_small:
+      return "loss_small";
+    case StopReason::gradient_small:
+      return "gradient_small";
+    case StopReason::stalled:
+      return "stalled";
+    case StopReason::iteration_budget:
+      return "iteration_budget";
+    case StopReason::time_budget:
+      return "time_budget";
+    case StopReason::stopped:
+      return "stopped";
+    case StopReason::not_finite:
+      return "not_finite";
+    case StopReason::line_search_failed:
+      return "line_search_failed";
+  }
+  return "?";
+}
+
+bool converged(StopReason r) {
+  return r == StopReason::loss_small || r == StopReason::gradient_small || r == StopReason::stalled;
+}
+
+OptimizerResult minimize(const Objective& objective, const Vector& start,
+                         const OptimizerOptions& options, const IterationCallback& callback) {
+  check(options);
+  Driver driver(objective, options, callback);
+  try {
+    if (options.method == OptimizerMethod::lbfgs)
+      run_lbfgs(driver, start);
+    else
+      run_gradient_descent(driver, start);
+    // LBFGSpp returns by itself only at a gradient within epsilon.
+    return driver.finish(StopReason::gradient_small, "the gradient vanished");
+  } catch (const Stop& stop) {
+    return driver.finish(stop.reason, stop.message);
+  } catch (const ObjectiveThrew&) {
+    return driver.finish(StopReason::stopped, "");  // rethrows the objective's exception
+  } catch (const std::exception& e) {  // LBFGSpp: a line search that found no lower point
+    return driver.finish(StopReason::line_search_failed,
+                         std::string("the line search found no lower loss (") + e.what() + ")");
+  }
+}
+
+}  // namespace neurocloth
