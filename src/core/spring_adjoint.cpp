@@ -23,10 +23,16 @@ struct AdjointChunk {
 //   dE/dd = (m / l) lf + (dE/dm b2 / l)(v_b - v_a) + (dE/dl / l) d,  dE/d(v_b - v_a) = (dE/dm b2 /
 //   l) d dE/db1 = dE/dm phi,  dE/db2 = dE/dm r / l,  dE/dL = -dE/dm b1 (phi' + extra threshold
 //   [beyond])
-template <SpringFunctionKind K>
+// Direct == true (the chunk's two node ranges are disjoint, as in the force
+// evaluation): add into adj at both ends at once; else store n_i1's share in
+// `out` for accumulate_chunk.
+template <SpringFunctionKind K, bool Direct>
 void adjoint_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                    std::int32_t b, const ClothState& s, const NodeVectors& lF, AdjointChunk& out,
-                   SpringGradients& g) {
+                   ClothState& adj, SpringGradients& g) {
+  double *px = adj.x.data() + a, *py = adj.y.data() + a, *pz = adj.z.data() + a;
+  double *qx = adj.vx.data() + a, *qy = adj.vy.data() + a, *qz = adj.vz.data() + a;
+  const std::int32_t o = b - a;
   const double *xa = s.x.data() + a, *ya = s.y.data() + a, *za = s.z.data() + a;
   const double *xb = s.x.data() + b, *yb = s.y.data() + b, *zb = s.z.data() + b;
   const double *vxa = s.vx.data() + a, *vya = s.vy.data() + a, *vza = s.vz.data() + a;
@@ -68,13 +74,31 @@ void adjoint_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count,
     const double c_rel = lm * b2[k] * inv_len;
     const double c_d = l_len * inv_len;
     const double s_m = scale * mask;
-    // dE/dp_a = -dE/dd, dE/dv_a = -dE/d(v_b - v_a)
-    out.position.fx[k] = -(s_m * lfx + c_rel * dvx + c_d * dx);
-    out.position.fy[k] = -(s_m * lfy + c_rel * dvy + c_d * dy);
-    out.position.fz[k] = -(s_m * lfz + c_rel * dvz + c_d * dz);
-    out.velocity.fx[k] = -c_rel * dx;
-    out.velocity.fy[k] = -c_rel * dy;
-    out.velocity.fz[k] = -c_rel * dz;
+    // dE/dp_a = -dE/dd, dE/dv_a = -dE/d(v_b - v_a); n_i2 gets the negatives.
+    const double gx = s_m * lfx + c_rel * dvx + c_d * dx;
+    const double gy = s_m * lfy + c_rel * dvy + c_d * dy;
+    const double gz = s_m * lfz + c_rel * dvz + c_d * dz;
+    if constexpr (Direct) {
+      px[k] -= gx;
+      py[k] -= gy;
+      pz[k] -= gz;
+      px[k + o] += gx;
+      py[k + o] += gy;
+      pz[k + o] += gz;
+      qx[k] -= c_rel * dx;
+      qy[k] -= c_rel * dy;
+      qz[k] -= c_rel * dz;
+      qx[k + o] += c_rel * dx;
+      qy[k + o] += c_rel * dy;
+      qz[k + o] += c_rel * dz;
+    } else {
+      out.position.fx[k] = -gx;
+      out.position.fy[k] = -gy;
+      out.position.fz[k] = -gz;
+      out.velocity.fx[k] = -c_rel * dx;
+      out.velocity.fy[k] = -c_rel * dy;
+      out.velocity.fz[k] = -c_rel * dz;
+    }
     g1[k] += lm * phi;
     g2[k] += lm * rel * inv_len;
     gL[k] += lm * b1[k] * rest_slope;
@@ -86,8 +110,12 @@ void adjoint_all(const ClothNetwork& net, const ClothState& s, const NodeVectors
                  ClothState& adj, SpringGradients& g) {
   AdjointChunk chunk;
   for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
-                                  std::int32_t b, bool) {
-    adjoint_chunk<K>(net.springs, first, count, a, b, s, lF, chunk, g);
+                                  std::int32_t b, bool direct) {
+    if (direct) {
+      adjoint_chunk<K, true>(net.springs, first, count, a, b, s, lF, chunk, adj, g);
+      return;
+    }
+    adjoint_chunk<K, false>(net.springs, first, count, a, b, s, lF, chunk, adj, g);
     accumulate_chunk(count, a, b, chunk.position.fx, chunk.position.fy, chunk.position.fz,
                      {adj.x.data(), adj.y.data(), adj.z.data()});
     accumulate_chunk(count, a, b, chunk.velocity.fx, chunk.velocity.fy, chunk.velocity.fz,

@@ -61,11 +61,20 @@ class Driver {
     ++result_.evaluations;
     if (result_.best_theta.size() == 0) result_.best_theta = theta;  // the start, at least
     const bool finite_gradient = !gradient || gradient->allFinite();
-    if (!std::isfinite(loss) || !finite_gradient)
-      throw Stop{StopReason::not_finite,
-                 std::string(std::isfinite(loss) ? "the gradient" : "the loss") + " came back " +
-                     (std::isnan(loss) ? "NaN" : "not finite") + " at evaluation " +
-                     std::to_string(result_.evaluations)};
+    if (!std::isfinite(loss) || !finite_gradient) {
+      const std::string what = std::string(std::isfinite(loss) ? "the gradient" : "the loss") +
+                               " came back " + (std::isnan(loss) ? "NaN" : "not finite") +
+                               " at evaluation " + std::to_string(result_.evaluations);
+      // At the start there is nothing to go back to. Later it is a trial step
+      // too long (a cloth too stiff for its step blows up): the line search
+      // sees an infinite loss and shortens the step; if every trial blows up,
+      // the search fails and finish() says why.
+      if (result_.evaluations == 1) throw Stop{StopReason::not_finite, what};
+      last_not_finite_ = what;
+      if (gradient) gradient->setZero();
+      return std::numeric_limits<double>::infinity();
+    }
+    last_not_finite_.clear();
     if (!(loss >= result_.best_loss)) {  // also when best_loss is still NaN
       result_.best_loss = loss;
       result_.best_theta = theta;
@@ -83,10 +92,12 @@ class Driver {
     if (loss <= options_.loss_tolerance)
       throw Stop{StopReason::loss_small, "the loss " + number(loss) + " is within the tolerance " +
                                              number(options_.loss_tolerance)};
-    if (gradient.norm() <= options_.gradient_tolerance)
+    if (k == 0) start_gradient_ = gradient.norm();
+    if (gradient.norm() <= options_.gradient_tolerance * start_gradient_)
       throw Stop{StopReason::gradient_small, "the gradient's norm " + number(gradient.norm()) +
-                                                 " is within the tolerance " +
-                                                 number(options_.gradient_tolerance)};
+                                                 " is within " +
+                                                 number(options_.gradient_tolerance) +
+                                                 " of its start " + number(start_gradient_)};
     const int w = options_.stall_iterations;
     if (w > 0 && k >= w) {
       const double before = result_.history[result_.history.size() - 1 - w].loss;
@@ -107,6 +118,11 @@ class Driver {
 
   OptimizerResult finish(StopReason reason, std::string why) {
     if (thrown_) std::rethrow_exception(thrown_);
+    // A search that ended on a blown-up trial failed because of it: a NaN stop.
+    if (reason == StopReason::line_search_failed && !last_not_finite_.empty()) {
+      reason = StopReason::not_finite;
+      why = last_not_finite_ + " and no shorter step along the search direction was finite";
+    }
     result_.reason = reason;
     result_.seconds = elapsed();
     // accept() counts an iteration only once it passed every test.
@@ -128,6 +144,8 @@ class Driver {
   OptimizerOptions options_;
   const IterationCallback& callback_;
   double start_ = 0;
+  double start_gradient_ = 0;    // |grad| at iteration 0
+  std::string last_not_finite_;  // the last evaluation's, when it was not finite
   OptimizerResult result_;
   std::exception_ptr thrown_;
 };
@@ -164,7 +182,7 @@ class LineSearchThenHook {
 void run_lbfgs(Driver& driver, const Vector& start) {
   LBFGSpp::LBFGSParam<double> param;
   param.m = driver.options().lbfgs_memory;
-  param.epsilon = driver.options().gradient_tolerance;
+  param.epsilon = 0;  // the gradient test is the driver's (relative to the start)
   param.epsilon_rel = 0;
   param.past = 0;            // the stall test is the driver's
   param.max_iterations = 0;  // so is the budget

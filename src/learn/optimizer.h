@@ -28,7 +28,7 @@ const char* to_string(OptimizerMethod method);
 
 enum class StopReason {
   loss_small,          // the loss reached loss_tolerance
-  gradient_small,      // |grad| reached gradient_tolerance: a stationary point
+  gradient_small,      // |grad| fell to gradient_tolerance times its start: a stationary point
   stalled,             // the loss fell by less than stall_tolerance over stall_iterations
   iteration_budget,    // max_iterations done
   time_budget,         // time_budget seconds passed
@@ -42,10 +42,12 @@ bool converged(StopReason reason);
 
 struct OptimizerOptions {
   OptimizerMethod method = OptimizerMethod::lbfgs;
-  int max_iterations = 100;           // > 0
-  double time_budget = 0;             // seconds on `clock`; 0: none
-  double loss_tolerance = 0;          // stop when the loss is at most this
-  double gradient_tolerance = 1e-10;  // stop when |grad| (2-norm) is at most this
+  int max_iterations = 100;   // > 0
+  double time_budget = 0;     // seconds on `clock`; 0: none
+  double loss_tolerance = 0;  // stop when the loss is at most this
+  // Stop when |grad| (2-norm) is at most this times |grad| at the start. Relative,
+  // because a loss in m^2 can be 1e-10 at the start and still far from its optimum.
+  double gradient_tolerance = 1e-9;
   // Stalled: the loss fell by less than stall_tolerance * |loss| over the last
   // stall_iterations iterations (0: never).
   int stall_iterations = 5;
