@@ -84,5 +84,58 @@ TEST_F(CliFit, RecoversTheSpringConstantAndWritesALoadableScene) {
   EXPECT_EQ(sim.code, kOk) << sim.err;
 }
 
+// Every bad reference the issue lists: exit 1, one line naming the file, the
+// line and the field, nothing written.
+TEST_F(CliFit, EveryBadMarkerFileIsRefusedNamingFileLineAndField) {
+  struct Bad {
+    const char* text;
+    std::vector<std::string> mentions;
+  };
+  const std::vector<Bad> cases = {
+      {"time,node,x,y,z\n0.1,0,0,0,0\n0.1,10,0,0,0\n", {":3", "node", "10"}},
+      {"time,node,x,y,z\n0.1,0,0,nan,0\n", {":2", "y"}},
+      {"time,node,x,y,z\n0.1,0,0,0,inf\n", {":2", "z"}},
+      {"time,node,x,y,z\n0.1,0,0,0,0\n0.05,1,0,0,0\n", {":3", "time"}},
+      {"time,node,x,y,z\n0.1,3,0,0,0\n0.1,3,0,0,1\n", {":3", "node", "3"}},
+      {"time,node,x,y,z\n", {"marker"}},
+  };
+  for (const Bad& b : cases) {
+    const std::string ref = write("markers.csv", b.text);
+    std::vector<std::string> mentions = {"markers.csv"};
+    mentions.insert(mentions.end(), b.mentions.begin(), b.mentions.end());
+    expect_input_error({"fit", scene_asset("chain"), "--reference", ref, "--out", fitted()},
+                       mentions);
+  }
+}
+
+TEST_F(CliFit, ARecordingOfAnotherSceneIsRefused) {
+  const std::string rec = (dir_ / "hanging.motion").string();
+  ASSERT_EQ(run({"simulate", scene_asset("hanging"), "--seconds", "0.02", "--record", rec, "--out",
+                 result_path()})
+                .code,
+            kOk);
+  fs::remove(result_path());
+  fs::rename(rec, dir_ / "moved.motion");  // out of the output folder the check looks at
+  expect_input_error({"fit", scene_asset("chain"), "--reference", (dir_ / "moved.motion").string(),
+                      "--out", fitted()},
+                     {"moved.motion", "node_count", "400"});
+}
+
+// Parameters, integrators and modules fit cannot differentiate: one line
+// naming them, nothing written.
+TEST_F(CliFit, WhatFitCannotChangeIsRefusedByName) {
+  const std::string ref = reference_from("chain", 50.0);
+  for (const auto& [params, mention] : std::vector<std::pair<std::string, std::string>>{
+           {"friction", "collider"}, {"wind.drag", "wind.drag"}, {"", "unknown parameter ''"}}) {
+    expect_input_error(
+        {"fit", scene_asset("chain"), "--reference", ref, "--params", params, "--out", fitted()},
+        {"--params", mention});
+  }
+  const std::string rk4 =
+      write("rk4.json", with(read_text(scene_asset("chain")), "\"integrator\": \"network\"",
+                             "\"integrator\": \"rk4\""));
+  expect_input_error({"fit", rk4, "--reference", ref, "--out", fitted()}, {"rk4", "adjoint"});
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test
