@@ -226,6 +226,8 @@ int run_fit(const FitOptions& o) {
       });
   progress.close();
   std::printf("stopped (%s): %s\n", to_string(result.reason), result.message.c_str());
+  std::printf("memory: the tape held at most %.3g MB (--tape-budget %g MB)\n",
+              double(problem.peak_tape_bytes()) / double(1 << 20), o.tape_budget_mb);
   if (std::isnan(result.best_loss)) {
     std::fprintf(stderr,
                  "error: the scene's own parameters already give a non-finite loss; nothing "
