@@ -98,6 +98,7 @@ TEST_F(CliFit, EveryBadMarkerFileIsRefusedNamingFileLineAndField) {
       {"time,node,x,y,z\n0.1,0,0,0,0\n0.05,1,0,0,0\n", {":3", "time"}},
       {"time,node,x,y,z\n0.1,3,0,0,0\n0.1,3,0,0,1\n", {":3", "node", "3"}},
       {"time,node,x,y,z\n", {"marker"}},
+      {"time,node,x,y,z\n1e300,0,0,0,0\n", {"time", "1e7"}},
   };
   for (const Bad& b : cases) {
     const std::string ref = write("markers.csv", b.text);

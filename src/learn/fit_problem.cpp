@@ -311,6 +311,14 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
   duration = ref.frames.back().time;
   if (!(duration > 0))
     throw InputError(ref.path, "time", "the reference ends at t = 0: nothing to fit to");
+  // A fit runs the scene to the last frame many times: a reference whose time
+  // runs to years would never finish (or allocate a plan of that many steps).
+  constexpr double kMaxSteps = 1e7;
+  if (!(duration / scene.solver.dt <= kMaxSteps))
+    throw InputError(ref.path, "time",
+                     "the reference ends at t = " + std::to_string(duration) +
+                         " s: " + std::to_string(duration / scene.solver.dt) +
+                         " steps of the scene's dt; a fit runs at most 1e7");
   StepPlan steps;
   try {
     steps = plan_steps(scene, duration);
@@ -468,8 +476,8 @@ FitProblem::FitProblem(const Scene& scene, const ReferenceMotion& reference,
   if (!(settings.smoothness >= 0) || !std::isfinite(settings.smoothness))
     throw InputError("command line", "--smoothness", "must be a finite number >= 0");
   m.build_model();
-  m.parse_parameters();
   m.plan(reference);
+  m.parse_parameters();
   bool masses = false, friction = false;
   for (const Unknown& u : m.unknowns) {
     masses |= u.target == Target::node_mass;
