@@ -9,6 +9,7 @@
 #include "mesh_node_order.h"
 #include "obj_mesh_writer.h"
 #include "reference_motion.h"
+#include "shuffled_grid.h"
 #include "streamed_file.h"
 
 namespace neurocloth::cli_test {
@@ -89,19 +90,12 @@ TEST_F(CliRecord, RecordingLeavesTheRunAsItWas) {
 // A mesh whose file scatters neighbours is renumbered at load; the recording
 // and the cache's mesh are in the file's vertex order all the same.
 TEST_F(CliRecord, AShuffledMeshIsRecordedInTheFilesVertexOrder) {
-  GridSpec g;
-  g.rows = g.cols = 10;
-  g.spacing = 0.05;
-  const ClothTopology grid = build_grid(g);
+  const test::ShuffledGrid sg = test::shuffled_grid(10, 0.05);
+  const ClothTopology& grid = sg.grid;
+  const auto& order = sg.order;
+  const auto& vertex_of = sg.vertex_of;
   const int n = static_cast<int>(grid.rest_positions.size());
-  std::vector<std::int32_t> order(n);  // shuffled vertex k is grid node order[k]
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), std::mt19937(12));
-  std::vector<int> vertex_of(n);
-  for (int k = 0; k < n; ++k)
-    vertex_of[order[k]] = k;
-  const ClothTopology shuffled = renumbered(grid, order);
-  write_obj_mesh(shuffled, (dir_ / "shuffled.obj").string());
+  write_obj_mesh(sg.shuffled, (dir_ / "shuffled.obj").string());
   const json scene = {
       {"cloth",
        {{"mesh", {{"obj", "shuffled.obj"}}},

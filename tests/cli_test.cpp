@@ -9,6 +9,7 @@
 #include "grid_builder.h"
 #include "mesh_node_order.h"
 #include "obj_mesh_writer.h"
+#include "shuffled_grid.h"
 
 namespace neurocloth::cli_test {
 namespace {
@@ -386,19 +387,13 @@ TEST_F(Cli, BenchRejectsSizesAndCountsBeyondItsLimits) {
 // shuffled, pinned and moved by file index, ends with the same positions for
 // the same vertices in RESULT.json (to rounding: the sums run in other orders).
 TEST_F(Cli, AShuffledMeshGivesTheSameResultByFileIndex) {
-  GridSpec g;
-  g.rows = g.cols = 16;
-  g.spacing = 0.05;
-  const ClothTopology grid = build_grid(g);
+  const test::ShuffledGrid sg = test::shuffled_grid(16, 0.05);
+  const ClothTopology& grid = sg.grid;
+  const auto& order = sg.order;
+  const auto& vertex_of = sg.vertex_of;
   const int n = static_cast<int>(grid.rest_positions.size());
-  std::vector<std::int32_t> order(n);  // shuffled vertex k is grid node order[k]
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), std::mt19937(12));
-  std::vector<int> vertex_of(n);
-  for (int k = 0; k < n; ++k)
-    vertex_of[order[k]] = k;
   write_obj_mesh(grid, (dir_ / "rows.obj").string());
-  write_obj_mesh(renumbered(grid, order), (dir_ / "shuffled.obj").string());
+  write_obj_mesh(sg.shuffled, (dir_ / "shuffled.obj").string());
 
   // Hung from its two top corners, the middle of its top edge drawn aside.
   const auto scene = [&](const std::string& obj, const std::vector<int>& vertex) {

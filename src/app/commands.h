@@ -130,7 +130,15 @@ struct FitOptions {
   double learning_rate = 0.05;      // --learning-rate: online step per window (log units)
 };
 int run_fit(const FitOptions& options);
-// The online mode (--online), in fit_online.cpp.
+// The online mode (--online), in fit_online.cpp; run_fit checks the options both share first.
 int run_fit_online(const FitOptions& options);
+// What both modes build from the options: the reference read for `scene` and the
+// fit problem (InputError naming the file or option). fit_command.cpp.
+class FitProblem;
+FitProblem load_fit_problem(const FitOptions& options, const Scene& scene);
+// Each block of theta as one value (a per-element block as its geometric mean),
+// and its name in the progress line and the CSV ("spring_constant_geomean").
+std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta);
+std::vector<std::string> block_names(const FitProblem& problem);
 
 }  // namespace neurocloth

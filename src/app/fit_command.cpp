@@ -179,14 +179,7 @@ int exit_code(StopReason reason) {
 
 }  // namespace
 
-int run_fit(const FitOptions& o) {
-  if (o.online) return run_fit_online(o);
-  OptimizerOptions opt;
-  opt.method = check_options(o);
-  opt.max_iterations = o.max_iterations;
-  opt.time_budget = o.time_budget;
-
-  const Scene scene = load_scene(o.scene);
+FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   const ReferenceMotion reference =
       read_reference(o.reference, scene.topology.rest_positions.size());
   FitSettings settings;
@@ -194,7 +187,32 @@ int run_fit(const FitOptions& o) {
   settings.per_element = o.per_element;
   settings.smoothness = o.smoothness;
   settings.tape_budget_bytes = std::size_t(o.tape_budget_mb * double(1 << 20));
-  FitProblem problem(scene, reference, settings);
+  return FitProblem(scene, reference, settings);
+}
+
+std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta) {
+  std::vector<double> v;
+  for (const Column& c : columns_of(problem))
+    v.push_back(column_value(c, theta));
+  return v;
+}
+
+std::vector<std::string> block_names(const FitProblem& problem) {
+  std::vector<std::string> v;
+  for (const Column& c : columns_of(problem))
+    v.push_back(c.name);
+  return v;
+}
+
+int run_fit(const FitOptions& o) {
+  OptimizerOptions opt;
+  opt.method = check_options(o);
+  if (o.online) return run_fit_online(o);
+  opt.max_iterations = o.max_iterations;
+  opt.time_budget = o.time_budget;
+
+  const Scene scene = load_scene(o.scene);
+  FitProblem problem = load_fit_problem(o, scene);
   const std::vector<Column> columns = columns_of(problem);
   const double observations = double(problem.observations());
   std::printf("fit: %s to %s: %zu unknowns, %zu observed positions over %g s, %s\n",

@@ -1,4 +1,5 @@
-// neurocloth-cli fit --online: the paper's online adaptation. The cloth runs
+// neurocloth-cli fit --online: the paper's online adaptation (the options
+// common to fit were checked by run_fit). The cloth runs
 // through the reference's time once; after every window of W steps the error
 // over that window is back-propagated through it and the weights move once
 // (online_adaptation.h). Writes FITTED.json with the weights at the end, and the
@@ -27,34 +28,15 @@ int run_fit_online(const FitOptions& o) {
     throw InputError("command line", "--learning-rate",
                      "must be in (0, 10] (the largest change of one parameter per window, in log "
                      "units for positive ones)");
-  if (o.out.empty())
-    throw InputError("command line", "--out", "must name the FITTED.json to write");
   const Scene scene = load_scene(o.scene);
-  const ReferenceMotion reference =
-      read_reference(o.reference, scene.topology.rest_positions.size());
-  FitSettings settings;
-  if (!o.params.empty()) settings.params = o.params;
-  settings.per_element = o.per_element;
-  settings.tape_budget_bytes = std::size_t(o.tape_budget_mb * double(1 << 20));
-  FitProblem problem(scene, reference, settings);
+  FitProblem problem = load_fit_problem(o, scene);
   OnlineAdaptation online(problem, {static_cast<std::size_t>(o.window), o.learning_rate});
   std::printf("fit --online: %s to %s: %zu unknowns, windows of %d steps, learning rate %g\n",
               scene.name.c_str(), o.reference.c_str(), problem.size(), o.window, o.learning_rate);
 
   FitHistory history;
-  for (const FitBlock& b : problem.blocks())
-    history.columns.push_back(b.count == 1 ? b.name : b.name + "_geomean");
-  auto columns = [&](const Eigen::VectorXd& theta) {
-    std::vector<double> v;
-    for (const FitBlock& b : problem.blocks()) {
-      double sum = 0;
-      for (std::size_t i = b.offset; i < b.offset + b.count; ++i)
-        sum += theta[Eigen::Index(i)];
-      const double mean = sum / double(b.count);
-      v.push_back(b.log_space ? std::exp(mean) : mean);
-    }
-    return v;
-  };
+  history.columns = block_names(problem);
+  auto columns = [&](const Eigen::VectorXd& theta) { return block_values(problem, theta); };
   const bool terminal = isatty(fileno(stdout)) != 0;
   const InterruptScope ctrl_c;
   int windows = 0;

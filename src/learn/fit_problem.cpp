@@ -97,8 +97,9 @@ struct FitProblem::Impl {
   std::vector<FitBlock> blocks;
   std::size_t size = 0;
   std::unique_ptr<Rollout> rollout;
-  StepPlan steps;            // the whole run's
-  ObservationPlan observed;  // the whole run's
+  StepPlan steps;                   // the whole run's
+  ObservationPlan observed;         // the whole run's
+  std::vector<double> frame_times;  // the reference's, one per observed frame
   RolloutGradients gradients;
   double duration = 0;
 
@@ -347,6 +348,7 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
       obs.targets.push_back(f.positions[k]);
     }
     obs.frames.push_back(fr);
+    frame_times.push_back(f.time);
   }
   this->steps = steps;
   observed = obs;
@@ -582,6 +584,45 @@ double FitProblem::step_time(std::size_t k) const {
 }
 ClothState FitProblem::initial_state() const {
   return impl_->scene.initial_state();
+}
+
+bool FitProblem::reference_state(double t, ClothState& state) const {
+  const Impl& m = *impl_;
+  const std::vector<double>& ft = m.frame_times;
+  const std::size_t n = m.base.net.node_count();
+  if (ft.size() < 2 || !(t >= ft.front()) || !(t <= ft.back())) return false;
+  // Frame f observes every node, in the order frame 0 lists them.
+  const auto full = [&](std::size_t f) {
+    const ObservationPlan::Frame& fr = m.observed.frames[f];
+    if (fr.count != n) return false;
+    const ObservationPlan::Frame& first = m.observed.frames[0];
+    return first.count == n && std::equal(m.observed.nodes.begin() + std::ptrdiff_t(fr.first),
+                                          m.observed.nodes.begin() + std::ptrdiff_t(fr.first + n),
+                                          m.observed.nodes.begin() + std::ptrdiff_t(first.first));
+  };
+  const auto at = [&](std::size_t f, std::size_t k) -> Vec3 {
+    return m.observed.targets[m.observed.frames[f].first + k];
+  };
+  std::size_t f = static_cast<std::size_t>(std::upper_bound(ft.begin(), ft.end(), t) - ft.begin());
+  f = std::min(std::max<std::size_t>(f, 1), ft.size() - 1);  // frames f-1 and f bracket t
+  if (!full(f - 1) || !full(f)) return false;
+  // Velocity at a frame: central difference where both neighbours are full
+  // (second order), else one-sided.
+  const auto velocity = [&](std::size_t g, std::size_t k) -> Vec3 {
+    const std::size_t lo = g > 0 && full(g - 1) ? g - 1 : g;
+    const std::size_t hi = g + 1 < ft.size() && full(g + 1) ? g + 1 : g;
+    return (at(hi, k) - at(lo, k)) / (ft[hi] - ft[lo]);
+  };
+  const double w = (t - ft[f - 1]) / (ft[f] - ft[f - 1]);
+  ClothState s(n);
+  const ObservationPlan::Frame& first = m.observed.frames[f - 1];
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(m.observed.nodes[first.first + k]);
+    s.set_position(i, (1 - w) * at(f - 1, k) + w * at(f, k));
+    s.set_velocity(i, (1 - w) * velocity(f - 1, k) + w * velocity(f, k));
+  }
+  state = std::move(s);
+  return true;
 }
 
 double FitProblem::rms_error(const Eigen::VectorXd& theta) {

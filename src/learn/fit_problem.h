@@ -85,6 +85,11 @@ class FitProblem {
   double step_time(std::size_t k) const;  // when step k starts
   // The scene's initial state (where the whole plan starts).
   ClothState initial_state() const;
+  // The reference's own state at time t, when it observes every node in the
+  // two frames around t: positions interpolated between them, velocities their
+  // difference over the interval (an estimate: a recording keeps no
+  // velocities). False, `state` untouched, when it does not (markers).
+  bool reference_state(double t, ClothState& state) const;
 
   // The scene with theta's family values written into its material and
   // modules (the material becomes numeric). Per-element blocks are not in it:

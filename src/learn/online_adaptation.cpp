@@ -21,6 +21,8 @@ OnlineAdaptation::Update OnlineAdaptation::advance() {
   Update u;
   if (done()) return u;
   const std::size_t count = std::min(settings_.window, problem_.step_count() - next_);
+  if (settings_.follow_reference)
+    u.followed = problem_.reference_state(problem_.step_time(next_), state_);
   Eigen::VectorXd g;
   ClothState end;
   u.loss = problem_.window_loss(theta_, state_, next_, count, &g, &end);

@@ -23,6 +23,11 @@ namespace neurocloth {
 struct OnlineSettings {
   std::size_t window = 50;      // W: steps per back-propagation window (and per update)
   double learning_rate = 0.05;  // the largest step of one unknown per update
+  // Start each window from the reference's own state where it has one (a
+  // recording observes every node): the weights are then judged on W steps of
+  // their own, not on the drift gathered before ("teacher forcing"). Markers
+  // observe too few nodes: the cloth then runs free from its own state.
+  bool follow_reference = true;
 };
 
 class OnlineAdaptation {
@@ -36,6 +41,7 @@ class OnlineAdaptation {
     double loss = 0;   // its data term, m^2
     double rms_m = 0;  // RMS distance over its observations (0 when it had none)
     std::size_t observed = 0;
+    bool followed = false;  // the window started from the reference's state
     bool updated =
         false;  // false: nothing observed in it, or a non-finite loss (which ends the run)
   };
