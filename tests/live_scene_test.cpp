@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -322,6 +323,79 @@ TEST(LiveScene, NewRulesReadByTheSenderAreNotReadAgain) {
   EXPECT_EQ(live.apply(LoadRules{gone, rules}), "");
   EXPECT_EQ(live.scene().fuzzy_material->rules, rules);
   EXPECT_EQ(live.scene().fuzzy_material->rules_path, gone);
+}
+
+}  // namespace
+}  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+// The Learning panel's Apply: the weights ramp to the fitted material, whose
+// viscosity replaces the user's; a later input change asks the rule base again.
+TEST(LiveScene, AFittedMaterialRampsInAndReplacesTheUsersViscosity) {
+  const Scene scene = test::asset_scene("hanging_fuzzy");
+  LiveScene live(scene);
+  EXPECT_EQ(live.apply(SetParameter{test::parameter("viscosity"), 0.3}), "");
+  Material fitted = scene.material;
+  fitted.spring_constant = 321;
+  fitted.viscosity = 0.07;
+  EXPECT_EQ(live.apply(ApplyFit{fitted, {}}), "");
+  EXPECT_TRUE(live.simulation().ramping());
+  for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
+    live.simulation().advance(0.01);  // the ramp takes 64 accepted steps
+  ASSERT_FALSE(live.simulation().ramping());
+  Scene target_scene = scene;
+  target_scene.material = fitted;
+  target_scene.fuzzy_material.reset();
+  const ClothNetwork target = target_scene.build_network();
+  const ClothNetwork& net = live.simulation().network();
+  EXPECT_EQ(net.springs.stiffness, target.springs.stiffness);
+  EXPECT_TRUE(all_equal(net.springs.damping, 0.07));
+
+  // An input asks the rule base again: the fit gives way.
+  EXPECT_EQ(live.apply(SetParameter{test::parameter(scene, "input.mass"), 0.9}), "");
+  for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
+    live.simulation().advance(0.01);
+  std::map<std::string, double> inputs = scene.fuzzy_material->inputs;
+  inputs["mass"] = 0.9;
+  target_scene.material = scene.fuzzy_material->rules->derive(inputs).material;
+  EXPECT_EQ(live.simulation().network().springs.stiffness,
+            target_scene.build_network().springs.stiffness);
+}
+
+TEST(LiveScene, AFitIsRefusedWholeWhenAnyPartCannotBeTaken) {
+  LiveScene flag(test::asset_scene("flag"));
+  const std::vector<double> stiffness = flag.simulation().network().springs.stiffness;
+  Material bad = flag.scene().material;
+  bad.node_mass = std::nan("");
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}}), "not finite"));
+  bad.node_mass = -1;
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}}), "ApplyFit: the fitted material has"));
+
+  Material good = flag.scene().material;
+  good.spring_constant *= 2;
+  const ParameterId wind_x = test::parameter(flag.scene(), "wind.velocity.x");
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{good, {{wind_x, std::nan("")}}}), "not finite"));
+  EXPECT_TRUE(contains(
+      flag.apply(ApplyFit{good, {{ParameterId::module(7, ModuleParameter::rate, -1), 1.0}}}),
+      "no module parameter"));
+  EXPECT_FALSE(flag.simulation().ramping());
+  EXPECT_EQ(flag.simulation().network().springs.stiffness, stiffness);
+
+  // A collider's friction is fitted, but the running cloth cannot take it.
+  LiveScene table(test::asset_scene("table_drape"));
+  const ParameterId box_friction = ParameterId::module(0, ModuleParameter::friction, -1);
+  EXPECT_TRUE(contains(table.apply(ApplyFit{table.scene().material, {{box_friction, 0.3}}}),
+                       "cannot change while the cloth runs"));
+  EXPECT_FALSE(table.simulation().ramping());
+
+  // A fitted wind reaches the module and the status.
+  EXPECT_EQ(flag.apply(ApplyFit{good, {{wind_x, -3.0}}}), "");
+  SimulationStatus s;
+  flag.describe(s);
+  EXPECT_EQ(*s.wind, Vec3(-3, 0, 0.8));
+  EXPECT_TRUE(flag.simulation().ramping());
 }
 
 }  // namespace

@@ -12,9 +12,9 @@ gtest_discover_tests(ui_tests PROPERTIES LABELS ui DISCOVERY_TIMEOUT 60)
 # scripted sessions, their reports and screenshots. Label "viewer": the
 # sanitizer stage of .ci/run runs these without leak detection, because the
 # GL driver behind GLX leaks at teardown (docs/viewer.md, "Sanitizers").
-add_executable(viewer_tests viewer_test.cpp)
-target_link_libraries(viewer_tests PRIVATE neurocloth_render neurocloth_core nlohmann_json::nlohmann_json
-  GTest::gtest_main)
+add_executable(viewer_tests viewer_test.cpp viewer_learning_test.cpp)
+target_link_libraries(viewer_tests PRIVATE neurocloth_render neurocloth_learn neurocloth_core
+  nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_definitions(viewer_tests PRIVATE NEUROCLOTH_VIEWER="$<TARGET_FILE:neurocloth>"
   NEUROCLOTH_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tmp")
 add_dependencies(viewer_tests neurocloth)

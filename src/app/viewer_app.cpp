@@ -112,7 +112,8 @@ void ViewerApp::pace(double frame_start) {
 void ViewerApp::follow(const SimulationStatus& status, const FrameSnapshot& snapshot) {
   const std::string key = scene_key(status.scene_path, snapshot.geometry->node_count);
   if (key != scene_info_key_ && !status.scene_path.empty()) {
-    scene_info_key_ = key;  // tried once: a failure is shown, not retried every frame
+    scene_info_key_ = key;
+    learning_.scene_changed();  // tried once: a failure is shown, not retried every frame
     try {
       scene_info_ = SceneInfo(status.scene ? *status.scene : load_scene(status.scene_path));
       if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
@@ -122,6 +123,7 @@ void ViewerApp::follow(const SimulationStatus& status, const FrameSnapshot& snap
   }
   values_.follow(status);
   scene_info_.set_ranges(sim_.parameter_ranges());
+  learning_.update(snapshot, sink_);
 }
 
 void ViewerApp::carry_out_requests(const FrameSnapshot& snapshot) {
@@ -141,10 +143,13 @@ void ViewerApp::carry_out_requests(const FrameSnapshot& snapshot) {
 void ViewerApp::draw(const SimulationStatus& status, const FrameSnapshot& snapshot) {
   window_.begin_frame();
   const int width = window_.framebuffer_width(), height = window_.framebuffer_height();
-  renderer_->draw(snapshot, camera_, render_, width, height);
+  const bool ghosts = learning_.settings().show_ghosts && learning_.ghost_count() > 0;
+  renderer_->draw(snapshot, camera_, render_, width, height,
+                  ghosts ? &learning_.ghost_points() : nullptr);
   // The picture of the cloth, before the panels are drawn over it (unless asked for).
   if (requests_.screenshot && !requests_.screenshot_panels) take_screenshot();
-  PanelContext ctx{status, snapshot, scene_info_, values_, render_, requests_, messages_, sink_};
+  PanelContext ctx{status,    snapshot,  scene_info_, values_,   render_,
+                   requests_, messages_, sink_,       &learning_};
   draw_controls(ctx);
   window_.draw_ui();
   if (requests_.screenshot && requests_.screenshot_panels) take_screenshot();
@@ -220,12 +225,40 @@ void ViewerApp::rules(const std::string& path) {
   if (!error.empty()) show_error(elapsed_, error);
 }
 
+void ViewerApp::reference(const std::string& path) {
+  const std::string error = learning_.load_reference(path, scene_info_.node_count());
+  if (!error.empty()) show_error(elapsed_, error);
+}
+
+// What the Learning panel's buttons do; "wait" (scripts only) holds the window
+// until the fit ends, so what a script applies does not depend on the machine.
+void ViewerApp::fit(const ScriptEvent& e) {
+  std::string error;
+  if (e.name == "start") {
+    LearningSettings& s = learning_.settings();
+    s.online = e.online;
+    if (e.max_iterations > 0) s.max_iterations = e.max_iterations;
+    if (!e.params.empty()) copy_text(s.params, e.params);
+    error = learning_.start_fit(sim_.status().scene);
+  } else if (e.name == "stop") {
+    learning_.stop_fit();
+  } else if (e.name == "wait") {
+    learning_.wait_for_fit();
+  } else if (e.name == "apply") {
+    error = learning_.apply(sink_);
+  }
+  if (!error.empty()) show_error(elapsed_, error);
+}
+
 int ViewerApp::finish() {
   if (!options_.report) return kViewerOk;
   // The report shows the status after everything asked for has been applied.
   sim_.wait_for_commands();
+  learning_.update(*sim_.latest(), sink_);  // the ghosts where the cloth ended
+  sim_.wait_for_commands();
   const SimulationStatus status = sim_.status();
   note_errors(elapsed_, status);
+  report_.learning(learning_);
   try {
     report_.write(*options_.report, status, stats_, scene_info_.names());
   } catch (const std::exception& e) {

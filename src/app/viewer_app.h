@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "learning_session.h"
 #include "orbit_camera.h"
 #include "panel_context.h"
 #include "renderer.h"
@@ -65,6 +66,8 @@ class ViewerApp : private ScriptPlayer::Target {
   void resize(int width, int height) override;
   void load(const std::string& path) override;
   void rules(const std::string& path) override;
+  void reference(const std::string& path) override;
+  void fit(const ScriptEvent& event) override;
   void quit() override { quit_ = true; }
 
   ViewerWindow& window_;
@@ -76,6 +79,7 @@ class ViewerApp : private ScriptPlayer::Target {
   RenderOptions render_;
   WindowRequests requests_;
   UiMessages messages_;
+  LearningSession learning_;
   OrbitCamera camera_, start_camera_;
   std::unique_ptr<Renderer> renderer_;
   ViewerReport report_;

@@ -109,6 +109,37 @@ void ViewerReport::error(double t, const std::string& message) {
   errors_.push_back({{"t", t}, {"message", message}});
 }
 
+void ViewerReport::learning(const LearningSession& s) {
+  json out;
+  if (const auto& ref = s.reference())
+    out["reference"] = {
+        {"path", ref->path},
+        {"source", ref->source == ReferenceMotion::Source::recording ? "recording" : "markers"},
+        {"frames", ref->frames.size()},
+        {"observations", ref->observations()}};
+  else
+    out["reference"] = nullptr;
+  out["ghosts"] = {{"count", s.ghost_count()},
+                   {"time", s.ghost_time()},
+                   {"rms_m", s.ghost_rms_m()},
+                   {"reference_ended", s.reference_ended()}};
+  const FitProgress& p = s.progress();
+  json values = json::object();
+  for (std::size_t c = 0; c < p.names.size() && c < p.values.size(); ++c)
+    if (!p.values[c].empty()) values[p.names[c]] = p.values[c].back();
+  out["fit"] = {{"state", to_string(p.state)},
+                {"online", p.online},
+                {"rows", p.loss.size()},
+                {"iteration", p.iteration},
+                {"loss", p.loss},
+                {"values", values},
+                {"message", p.message},
+                {"reason", p.reason ? to_string(*p.reason) : ""}};
+  out["applied"] = {{"count", s.applied_count()}, {"last", s.applied()}};
+  out["error"] = s.error();
+  learning_ = out;
+}
+
 void ViewerReport::write(const std::string& path, const SimulationStatus& status,
                          const FrameStats& stats, const ParameterNames& names) const {
   json sets = sets_;
@@ -123,6 +154,7 @@ void ViewerReport::write(const std::string& path, const SimulationStatus& status
                        {"probes", probes_},
                        {"screenshots", screenshots_},
                        {"errors", errors_},
+                       {"learning", learning_},
                        {"frames",
                         {{"drawn", stats.frames()},
                          {"skipped", stats.skipped_frames()},

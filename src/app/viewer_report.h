@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "frame_snapshot.h"
+#include "learning_session.h"
 #include "simulation_thread.h"
 #include "viewer_frame_stats.h"
 
@@ -28,6 +29,9 @@ class ViewerReport {
   void probe(double t, int vertex, const FrameSnapshot& snapshot);
   void screenshot(const std::string& path, int width, int height);
   void error(double t, const std::string& message);
+  // The Learning panel at the end: the reference, its ghost points at the last
+  // snapshot, the fit's progress and what was applied.
+  void learning(const LearningSession& session);
 
   // Writes the report with the final status (each set's name read against
   // `names`, the running scene's); throws std::runtime_error naming `path`.
@@ -39,6 +43,7 @@ class ViewerReport {
                  pins_ = nlohmann::json::array(), sets_ = nlohmann::json::array(),
                  probes_ = nlohmann::json::array(), screenshots_ = nlohmann::json::array(),
                  errors_ = nlohmann::json::array();
+  nlohmann::json learning_ = nlohmann::json::object();
 };
 
 }  // namespace neurocloth

@@ -26,7 +26,12 @@ const std::pair<const char*, Type> kTypes[] = {{"move", Type::move},
                                                {"resize", Type::resize},
                                                {"load", Type::load},
                                                {"rules", Type::rules},
+                                               {"reference", Type::reference},
+                                               {"fit", Type::fit},
                                                {"quit", Type::quit}};
+
+const std::pair<const char*, int> kFitActions[] = {
+    {"start", 0}, {"stop", 1}, {"wait", 2}, {"apply", 3}};
 
 const std::pair<const char*, int> kButtons[] = {{"left", GLFW_MOUSE_BUTTON_LEFT},
                                                 {"right", GLFW_MOUSE_BUTTON_RIGHT},
@@ -122,9 +127,24 @@ ScriptEvent read_event(const JsonFields& in, const nlohmann::json& e, const std:
       ev.name = in.string(at("name"), name("name"));
       ev.amount = in.number(at("value"), name("value"));
       break;
+    case Type::fit:
+      in.allow_only(e, field, {"t", "type", "action", "online", "max_iterations", "params"});
+      lookup(in, at("action"), name("action"), kFitActions);
+      ev.name = in.string(at("action"), name("action"));
+      if (e.contains("online")) ev.online = in.boolean(at("online"), name("online"));
+      if (e.contains("max_iterations")) {
+        ev.max_iterations = in.integer(at("max_iterations"), name("max_iterations"));
+        if (ev.max_iterations < 1) in.fail(name("max_iterations"), "must be >= 1");
+      }
+      if (e.contains("params")) ev.params = in.string(at("params"), name("params"));
+      if (ev.name != "start" &&
+          (e.contains("online") || e.contains("max_iterations") || e.contains("params")))
+        in.fail(field, "online, max_iterations and params go with action \"start\"");
+      break;
     case Type::screenshot:
     case Type::load:
     case Type::rules:
+    case Type::reference:
       if (ev.type == Type::screenshot)
         in.allow_only(e, field, {"t", "type", "path", "panels"});
       else
@@ -154,7 +174,8 @@ ScriptEvent read_event(const JsonFields& in, const nlohmann::json& e, const std:
 }  // namespace
 
 const char* script_event_types() {
-  return "move, press, release, scroll, key, set, screenshot, probe, resize, load, rules, quit";
+  return "move, press, release, scroll, key, set, screenshot, probe, resize, load, rules, "
+         "reference, fit, quit";
 }
 
 Script load_script(const std::string& path) {

@@ -21,6 +21,8 @@ struct ScriptEvent {
     resize,
     load,
     rules,
+    reference,
+    fit,
     quit
   };
   double t = 0;
@@ -35,6 +37,11 @@ struct ScriptEvent {
   std::string name;     // set: parameter name; screenshot / load: path
   int node = -1;        // probe: node (as scenes count: a mesh's file vertex) to report
   bool panels = false;  // screenshot: the whole window, controls included
+  // fit: `name` is the action (start, stop, wait, apply); start's settings
+  // (0 / empty: the panel's own).
+  bool online = false;
+  int max_iterations = 0;
+  std::string params;
 };
 
 struct Script {

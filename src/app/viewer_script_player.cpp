@@ -71,6 +71,12 @@ void ScriptPlayer::dispatch(const ScriptEvent& e, Target& target) {
     case Type::rules:
       target.rules(e.name);
       break;
+    case Type::reference:
+      target.reference(e.name);
+      break;
+    case Type::fit:
+      target.fit(e);
+      break;
     case Type::quit:
       next_ = script_.events.size();  // nothing after a quit
       moving_ = false;

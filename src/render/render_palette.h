@@ -22,6 +22,9 @@ inline constexpr Colour kSpring[3] = {{0.10f, 0.25f, 0.85f},   // structural
 inline constexpr Colour kNodeFree = {0.12f, 0.12f, 0.14f};
 inline constexpr Colour kNodePinned = {0.90f, 0.08f, 0.08f};
 inline constexpr Colour kForce = {0.85f, 0.05f, 0.60f};
+// The reference motion's ghost points (the Learning panel): cool and bright,
+// unlike anything else in the frame.
+inline constexpr Colour kGhost = {0.0f, 0.80f, 0.90f};
 inline constexpr Colour kLegendText = {0.10f, 0.10f, 0.12f};
 
 }  // namespace neurocloth::palette

@@ -89,12 +89,14 @@ struct Renderer::Impl {
     collider_vao,
     grid_vao,
     overlay_vao,
+    ghost_vao,
     legend_vao,
     kVaoCount
   };
   GLuint vao[kVaoCount] = {};
   GlBuffer position, normal, strain, triangles, spring_pairs, node_colour;
-  GlBuffer collider_position, collider_normal, collider_index, grid_square, overlay, legend_quad;
+  GlBuffer collider_position, collider_normal, collider_index, grid_square, overlay, legend_quad,
+      ghost;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
   std::size_t triangle_indices = 0;
@@ -149,6 +151,8 @@ struct Renderer::Impl {
     glBindVertexArray(vao[overlay_vao]);
     attribute(kPosition, overlay, 3, kOverlayFloats, 0);
     attribute(kColour, overlay, 4, kOverlayFloats, 3);
+    glBindVertexArray(vao[ghost_vao]);
+    attribute(kPosition, ghost, 3, 3, 0);
     glBindVertexArray(vao[legend_vao]);
     attribute(kPosition, legend_quad, 2, 3, 0);
     attribute(kScalar, legend_quad, 1, 3, 2);
@@ -163,7 +167,7 @@ struct Renderer::Impl {
     long n = 0;
     for (const GlBuffer* b :
          {&position, &normal, &strain, &triangles, &spring_pairs, &node_colour, &collider_position,
-          &collider_normal, &collider_index, &grid_square, &overlay, &legend_quad})
+          &collider_normal, &collider_index, &grid_square, &overlay, &legend_quad, &ghost})
       n += b->allocations();
     return n;
   }
@@ -175,6 +179,7 @@ struct Renderer::Impl {
   void draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s, const RenderOptions& o,
                   int height);
   void draw_legend(const RenderOptions& o, int width, int height);
+  void draw_ghosts(const Eigen::Matrix4f& vp, const std::vector<float>& points, int height);
 };
 
 void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
@@ -375,6 +380,25 @@ void Renderer::Impl::draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& 
   glDisable(GL_BLEND);
 }
 
+// The reference's points, over everything (a ghost behind the cloth stays
+// visible), a little smaller than the nodes so both show where they meet.
+void Renderer::Impl::draw_ghosts(const Eigen::Matrix4f& vp, const std::vector<float>& points,
+                                 int height) {
+  if (points.size() < 3) return;
+  ghost.upload(points);
+  lines.use();
+  glUniformMatrix4fv(lu.view_projection, 1, GL_FALSE, vp.data());
+  glUniform1f(lu.point_size, std::clamp(float(height) / 240.0f, 3.0f, 8.0f));
+  glUniform1i(lu.round_points, 1);
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(vao[ghost_vao]);
+  const palette::Colour& c = palette::kGhost;
+  glVertexAttrib4f(kColour, c[0], c[1], c[2], 1.0f);
+  glDrawArrays(GL_POINTS, 0, GLsizei(points.size() / 3));
+  glUniform1i(lu.round_points, 0);
+  glEnable(GL_DEPTH_TEST);
+}
+
 void Renderer::Impl::draw_legend(const RenderOptions& o, int width, int height) {
   // A vertical bar at the right edge, 0 at the bottom and strain_max at the top,
   // labelled with both ends in percent.
@@ -414,7 +438,8 @@ Renderer::Renderer(const std::string& shader_dir) : impl_(std::make_unique<Impl>
 Renderer::~Renderer() = default;
 
 void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
-                    const RenderOptions& options, int width, int height) {
+                    const RenderOptions& options, int width, int height,
+                    const std::vector<float>* ghost_points) {
   if (width < 1 || height < 1) return;  // a minimised window
   Impl& m = *impl_;
   if (snapshot.geometry != m.geometry || !m.geometry_uploaded) m.upload_geometry(snapshot);
@@ -440,6 +465,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   m.draw_surfaces(camera, vp, options);
   if (options.grid) m.draw_grid(camera, vp);
   m.draw_lines(vp, snapshot, options, height);
+  if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);
   glBindVertexArray(0);
   glUseProgram(0);

@@ -36,8 +36,10 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
+  // `ghost_points` (x, y, z per point, m; may be null): a reference motion's
+  // nodes, drawn as small discs in their own colour over everything.
   void draw(const FrameSnapshot& snapshot, const OrbitCamera& camera, const RenderOptions& options,
-            int width, int height);
+            int width, int height, const std::vector<float>* ghost_points = nullptr);
   // The current framebuffer as RGBA, 8 bits per channel, top row first.
   std::vector<std::uint8_t> read_pixels(int width, int height) const;
   // How often a GL buffer was (re)allocated so far: frames of a size already

@@ -5,8 +5,10 @@
 #include <exception>
 #include <numeric>
 #include <sstream>
+#include <utility>
 
 #include "input_error.h"
+#include "physical_limits.h"
 #include "stability.h"
 
 namespace neurocloth {
@@ -127,6 +129,7 @@ void LiveScene::start(std::unique_ptr<Run> run) {
   const Scene& s = run_->scene;
   viscosity_.reset();
   friction_.reset();
+  fitted_.reset();
   inputs_.clear();
   if (s.fuzzy_material) inputs_ = s.fuzzy_material->inputs;
   wind_.reset();
@@ -152,7 +155,7 @@ std::string LiveScene::apply(const SimCommand& command) {
 
 Material LiveScene::target_material(const std::map<std::string, double>& inputs) const {
   const FuzzyMaterial* rules = run_->rules();
-  Material m = rules ? rules->derive(inputs).material : run_->scene.material;
+  Material m = fitted_ ? *fitted_ : rules ? rules->derive(inputs).material : run_->scene.material;
   if (viscosity_) m.viscosity = *viscosity_;
   if (friction_) m.friction = *friction_;
   return m;
@@ -213,8 +216,15 @@ void LiveScene::set_parameter(const ParameterId& id, double value) {
     case Kind::input: {
       std::map<std::string, double> inputs = inputs_;
       inputs[run_->names.inputs[id.index]] = value;
-      sim.ramp_to_material(target_material(inputs));  // no jolt: the weights move over 64 steps
-      inputs_ = std::move(inputs);                    // only once the ramp took it
+      // A new input asks the rule base again: an applied fit gives way.
+      const std::optional<Material> fitted = std::exchange(fitted_, std::nullopt);
+      try {
+        sim.ramp_to_material(target_material(inputs));  // no jolt: the weights move over 64 steps
+      } catch (...) {
+        fitted_ = fitted;
+        throw;
+      }
+      inputs_ = std::move(inputs);  // only once the ramp took it
       break;
     }
   }
@@ -387,6 +397,45 @@ std::string LiveScene::on(const LoadRules& c) {
   if (viscosity_) target.viscosity = *viscosity_;
   if (friction_) target.friction = *friction_;
   run_->sim.ramp_to_material(target);
+  return {};
+}
+
+// Everything is checked before anything changes: a refused fit leaves the run as it was.
+std::string LiveScene::on(const ApplyFit& c) {
+  const Material& m = c.material;
+  for (const double v :
+       {m.spring_constant, m.shear_constant, m.bend_constant, m.node_mass, m.viscosity, m.friction})
+    if (!std::isfinite(v)) return "ApplyFit: the fitted material has a value that is not finite";
+  if (const auto why = material_outside_limits(m))
+    return "ApplyFit: the fitted material has " + *why;
+  std::vector<std::pair<int, const std::pair<ParameterId, double>*>> modules;
+  for (const auto& p : c.module_parameters) {
+    const ParameterId& id = p.first;
+    const bool known = id.kind == ParameterId::Kind::module && id.index >= 0 &&
+                       static_cast<std::size_t>(id.index) < run_->names.modules.size();
+    if (!known) return "ApplyFit: no module parameter " + to_string(id, run_->names) + " here";
+    const std::string name = to_string(id, run_->names);
+    if (!std::isfinite(p.second))
+      return "ApplyFit: " + name + " = " + number(p.second) + " is not finite";
+    const int k = run_->force_module(id.index);
+    if (k < 0)
+      return "ApplyFit: " + name +
+             " cannot change while the cloth runs (only force modules take live changes)";
+    modules.push_back({k, &p});
+  }
+  Simulation& sim = run_->sim;
+  for (const auto& [k, p] : modules)
+    if (!sim.set_module_parameter(static_cast<std::size_t>(k), p->first, p->second))
+      return "ApplyFit: module " + to_string(p->first, run_->names) + " refused the value";
+  for (const auto& [k, p] : modules)
+    if (p->first.index == first_wind(run_->names) &&
+        p->first.parameter == ModuleParameter::velocity)
+      (*wind_)[p->first.axis] = p->second;
+  if (!modules.empty()) sim.rebase_divergence_check();  // the energy budget was for the old forces
+  fitted_ = m;
+  viscosity_.reset();  // the fit's own values, not the user's, from now on
+  friction_.reset();
+  sim.ramp_to_material(target_material());
   return {};
 }
 

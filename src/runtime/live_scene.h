@@ -70,6 +70,7 @@ class LiveScene {
   std::string on(const Reset& c);
   std::string on(const LoadScene& c);
   std::string on(const LoadRules& c);
+  std::string on(const ApplyFit& c);
 
   void set_parameter(const ParameterId& id, double value);
   // "" when `node` is a node of the cloth, else why not.
@@ -84,6 +85,9 @@ class LiveScene {
   std::unique_ptr<Run> run_;
   // What the user changed (cleared by Reset and LoadScene).
   std::optional<double> viscosity_, friction_;
+  // A fitted material applied (ApplyFit): what the network settles on instead
+  // of the scene's or the rule base's, until an input changes or the run restarts.
+  std::optional<Material> fitted_;
   std::map<std::string, double> inputs_;  // linguistic inputs, fuzzy scenes only
   std::optional<Vec3> wind_;              // the mean wind, scenes with wind only
   std::vector<FrameSnapshot::AppliedForce> forces_;

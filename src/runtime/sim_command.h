@@ -4,10 +4,13 @@
 // thread applies it between steps.
 #include <memory>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "fuzzy_material.h"
 #include "integrator.h"
+#include "material.h"
 #include "parameter_id.h"
 #include "vec3.h"
 
@@ -76,8 +79,20 @@ struct LoadRules {
   std::shared_ptr<const FuzzyMaterial> rules = nullptr;
 };
 
+// A fitted material, and fitted module parameters, for the running cloth (the
+// window's Learning panel): the weights ramp to the material over 64 steps, as
+// for a linguistic input, so the cloth takes it without a jolt. The fit's
+// viscosity and friction replace the user's. Refused whole (nothing changes)
+// when a value is not finite or outside the scene limits, or a module
+// parameter cannot change live (a collider's friction).
+struct ApplyFit {
+  Material material;
+  // Module ids as the running scene's ParameterNames index them.
+  std::vector<std::pair<ParameterId, double>> module_parameters;
+};
+
 using SimCommand =
     std::variant<SetParameter, SetIntegrator, SetAdaptive, SetSolver, ApplyForce, ReleaseForce,
-                 SetPinned, SetPaused, SingleStep, Advance, Reset, LoadScene, LoadRules>;
+                 SetPinned, SetPaused, SingleStep, Advance, Reset, LoadScene, LoadRules, ApplyFit>;
 
 }  // namespace neurocloth

@@ -2,6 +2,7 @@
 // (they must be seen), then the panels as collapsing sections.
 #include <imgui.h>
 
+#include "learning_session.h"
 #include "panels.h"
 
 namespace neurocloth {
@@ -40,6 +41,11 @@ void draw_controls(PanelContext& ctx) {
   if (ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) material_panel(ctx);
   if (ImGui::CollapsingHeader("Forces")) forces_panel(ctx);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) view_panel(ctx);
+  if (ctx.learning) {
+    // Opens by itself the first time a reference is loaded.
+    if (ctx.learning->reference()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (ImGui::CollapsingHeader("Learning")) learning_panel(ctx);
+  }
   ImGui::Text("%.0f fps", io.Framerate);
   ImGui::PopItemWidth();
   ImGui::End();

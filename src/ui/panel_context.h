@@ -15,6 +15,7 @@
 namespace neurocloth {
 
 using CommandSink = std::function<void(SimCommand)>;
+class LearningSession;
 
 // Carried out by the window before its next frame.
 struct WindowRequests {
@@ -40,6 +41,8 @@ struct PanelContext {
   WindowRequests& requests;
   UiMessages& messages;
   CommandSink post;
+  // The Learning panel's reference and fit (null: no Learning panel).
+  LearningSession* learning = nullptr;
 };
 
 }  // namespace neurocloth

@@ -14,6 +14,7 @@ void solver_panel(PanelContext& ctx);    // integrator, step, damping, speed, en
 void scene_panel(PanelContext& ctx);     // load, reset, pause, step, modules
 void forces_panel(PanelContext& ctx);    // gravity, wind, the drag
 void view_panel(PanelContext& ctx);      // render toggles, camera, screenshot, mouse help
+void learning_panel(PanelContext& ctx);  // reference, ghosts, fit, loss and parameters, apply
 
 // Width of the control window, px: the 3D view keeps the rest of the window.
 inline constexpr float kControlWidth = 400;
