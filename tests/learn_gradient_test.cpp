@@ -202,6 +202,31 @@ TEST(LearnGradient, OverASphereAndABoxEdge) {
   expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
 }
 
+// Per element where the cloth touches a floor with friction in the wind.
+TEST(LearnGradient, EveryWeightPerElementWithContactAndWind) {
+  SceneBuilder b = sliding_drop();
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+  b.module({{"type", "wind"}, {"velocity", {2.0, 0.0, 1.0}}});
+  const Scene scene = b.parse();
+  ASSERT_GE(sliding_on_floor(scene, 0.2), 4);
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "node_mass", "rest_length", "friction",
+              "wind.velocity.x"};
+  s.per_element = true;
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Eigen::VectorXd offset(static_cast<Eigen::Index>(p.size()));
+  for (Eigen::Index i = 0; i < offset.size(); ++i)
+    offset[i] = u(rng);
+  std::vector<Eigen::Index> which;
+  for (Eigen::Index i = 0; i < offset.size(); i += 5)
+    which.push_back(i);
+  which.push_back(offset.size() - 1);  // the wind
+  which.push_back(offset.size() - 2);  // the friction
+  expect_exact_gradient(p, which, offset, 1e-5);
+}
+
 // The loss compares what `simulate` would produce: the rollout's states at
 // step-aligned frames are the simulation's, bit for bit.
 TEST(LearnRollout, IsTheSimulationItDifferentiates) {
