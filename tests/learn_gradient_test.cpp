@@ -210,8 +210,8 @@ TEST(LearnGradient, EveryWeightPerElementWithContactAndWind) {
   const Scene scene = b.parse();
   ASSERT_GE(sliding_on_floor(scene, 0.2), 4);
   FitSettings s;
-  s.params = {"spring_constant", "viscosity", "node_mass", "rest_length", "friction",
-              "wind.velocity.x"};
+  s.params = {"spring_constant", "viscosity", "node_mass",
+              "rest_length",     "friction",  "wind.velocity.x"};
   s.per_element = true;
   FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
   std::mt19937 rng(5);

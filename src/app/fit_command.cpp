@@ -13,6 +13,7 @@
 #include "fit_problem.h"
 #include "fitted_output.h"
 #include "input_error.h"
+#include "loglog_chart.h"
 #include "long_run.h"
 #include "optimizer.h"
 #include "reference_motion.h"
@@ -280,6 +281,7 @@ int run_fit(const FitOptions& o) {
   const FittedModel model{problem.fitted_scene(best), problem.element_weights(best),
                           problem.element_rest_lengths(best)};
   const FittedFiles files = write_fit_outputs(scene, model, summary, history, o.out);
+  release_chart_caches();  // the one chart of this process is drawn
   std::printf("wrote %s%s%s, %s, %s (loss %.6g, RMS %.4g mm)\n", files.scene.c_str(),
               files.weights.empty() ? "" : ", ", files.weights.c_str(), files.csv.c_str(),
               files.png.c_str(), summary.loss, summary.rms_m * 1e3);

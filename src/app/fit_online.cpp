@@ -14,6 +14,7 @@
 #include "fit_problem.h"
 #include "fitted_output.h"
 #include "input_error.h"
+#include "loglog_chart.h"
 #include "long_run.h"
 #include "online_adaptation.h"
 #include "reference_motion.h"
@@ -100,6 +101,7 @@ int run_fit_online(const FitOptions& o) {
                           problem.element_weights(online.theta()),
                           problem.element_rest_lengths(online.theta())};
   const FittedFiles files = write_fit_outputs(scene, model, summary, history, o.out);
+  release_chart_caches();  // the one chart of this process is drawn
   std::printf("wrote %s, %s, %s (last window RMS %.4g mm)\n", files.scene.c_str(),
               files.csv.c_str(), files.png.c_str(), last_rms * 1e3);
   return interrupted ? kExitInterrupted : blew_up ? kExitDiverged : kExitOk;
