@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "online_adaptation.h"
+#include "recorded_reference.h"
 #include "scene_builder.h"
 
 namespace neurocloth {
@@ -22,18 +23,7 @@ Scene cloth(double k) {
 
 ReferenceMotion record(const Scene& scene, double seconds) {
   Simulation sim = scene.make_simulation();
-  ReferenceMotion ref;
-  while (sim.time() < seconds - 1e-9) {
-    EXPECT_EQ(sim.advance(0.005), RunStatus::ok);
-    ReferenceFrame f;
-    f.time = sim.time();
-    for (std::size_t i = 0; i < sim.state().size(); ++i) {
-      f.nodes.push_back(static_cast<std::int32_t>(i));
-      f.positions.push_back(sim.state().position(i));
-    }
-    ref.frames.push_back(f);
-  }
-  return ref;
+  return test::recorded_reference(sim, seconds, 0.005);
 }
 
 struct OnlineRun {

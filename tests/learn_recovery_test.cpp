@@ -11,6 +11,7 @@
 
 #include "fit_problem.h"
 #include "optimizer.h"
+#include "recorded_reference.h"
 #include "scene_builder.h"
 
 namespace neurocloth {
@@ -31,27 +32,10 @@ SceneBuilder hanging_cloth(double k, double viscosity) {
 
 // The simulation's positions every `every` steps (frames on step ends), of
 // every `stride`-th node, with Gaussian noise of `noise` m.
-ReferenceMotion record(const Scene& scene, double seconds, int every, int stride = 1,
-                       double noise = 0, unsigned seed = 1) {
+ReferenceMotion record(const Scene& scene, double seconds, int every, std::size_t stride = 1,
+                       double noise = 0) {
   Simulation sim = scene.make_simulation();
-  ReferenceMotion ref;
-  ref.path = "recorded";
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  const int frames = static_cast<int>(std::lround(seconds / (every * scene.solver.dt)));
-  for (int f = 1; f <= frames; ++f) {
-    EXPECT_EQ(sim.advance(every * scene.solver.dt), RunStatus::ok);
-    ReferenceFrame fr;
-    fr.time = sim.time();
-    for (std::size_t i = 0; i < sim.state().size(); i += static_cast<std::size_t>(stride)) {
-      Vec3 p = sim.state().position(i);
-      if (noise > 0) p += Vec3(gauss(rng), gauss(rng), gauss(rng)) * noise;
-      fr.nodes.push_back(static_cast<std::int32_t>(i));
-      fr.positions.push_back(p);
-    }
-    ref.frames.push_back(fr);
-  }
-  return ref;
+  return test::recorded_reference(sim, seconds, every * scene.solver.dt, stride, noise);
 }
 
 struct Fit {
@@ -124,17 +108,7 @@ TEST(LearnRecovery, PerElementFitFindsAPlantedStiffBand) {
   }
   // The reference: the planted network run by the simulation.
   Simulation sim(planted, uniform.initial_state(), uniform.solver);
-  ReferenceMotion ref;
-  for (int f = 1; f <= 40; ++f) {
-    ASSERT_EQ(sim.advance(0.01), RunStatus::ok);
-    ReferenceFrame fr;
-    fr.time = sim.time();
-    for (std::size_t i = 0; i < sim.state().size(); ++i) {
-      fr.nodes.push_back(static_cast<std::int32_t>(i));
-      fr.positions.push_back(sim.state().position(i));
-    }
-    ref.frames.push_back(fr);
-  }
+  const ReferenceMotion ref = test::recorded_reference(sim, 0.4, 0.01);
   FitSettings s;
   s.params = {"spring_constant"};
   s.per_element = true;
