@@ -132,5 +132,8 @@ struct FitOptions {
 int run_fit(const FitOptions& options);
 // The online mode (--online), in fit_online.cpp.
 int run_fit_online(const FitOptions& options);
+// Refuses an output of the fit (FITTED.json and its companions) that is one of
+// the files `scene` was read from (InputError naming --out).
+void check_fit_outputs(const FitOptions& options, const Scene& scene);
 
 }  // namespace neurocloth

@@ -30,6 +30,7 @@ int run_fit_online(const FitOptions& o) {
   if (o.out.empty())
     throw InputError("command line", "--out", "must name the FITTED.json to write");
   const Scene scene = load_scene(o.scene);
+  check_fit_outputs(o, scene);
   const ReferenceMotion reference =
       read_reference(o.reference, scene.topology.rest_positions.size());
   FitSettings settings;
@@ -74,7 +75,7 @@ int run_fit_online(const FitOptions& o) {
     if (u.observed == 0) continue;
     last_rms = u.rms_m;
     last_loss = u.loss;
-    const std::vector<double> values = columns(online.theta());
+    const std::vector<double> values = columns(problem.inside_limits(online.theta()));
     history.rows.push_back({windows, u.loss, u.rms_m, u.time, values});
     std::string line;
     char buf[96];
@@ -105,7 +106,7 @@ int run_fit_online(const FitOptions& o) {
   summary.iterations = windows;
   summary.loss = last_loss;
   summary.rms_m = last_rms;
-  const std::vector<double> values = columns(online.theta());
+  const std::vector<double> values = columns(problem.inside_limits(online.theta()));
   for (std::size_t c = 0; c < values.size(); ++c) {
     ParameterUncertainty p;
     p.name = history.columns[c];
