@@ -138,5 +138,140 @@ TEST_F(CliFit, WhatFitCannotChangeIsRefusedByName) {
   expect_input_error({"fit", rk4, "--reference", ref, "--out", fitted()}, {"rk4", "adjoint"});
 }
 
+// A reference only a value beyond the scene's limits would explain (the
+// chain held still against gravity: air drag as strong as it gets): the fit
+// stops at the limit, and FITTED.json loads. Before the limit was kept,
+// FITTED.json held a rate of 2e5 1/s, which its own loader refuses.
+TEST_F(CliFit, AFittedValueStaysInsideTheSceneLimits) {
+  std::string text = with(read_text(scene_asset("chain")), "\"dt\": 0.001", "\"dt\": 1e-5");
+  text = with(text, "\"solver\"",
+              "\"modules\": [{\"type\": \"air_drag\", \"rate\": 9000}], \"solver\"");
+  const std::string scene = write("drag.json", text);
+  std::string csv = "time,node,x,y,z\n";
+  for (int k = 1; k <= 10; ++k)
+    for (int n = 0; n < 10; ++n)
+      csv += std::to_string(0.0002 * k) + "," + std::to_string(n) + ",0," +
+             std::to_string(2 - 0.1 * n) + ",0\n";
+  const std::string ref = write("still.csv", csv);
+  for (const bool online : {false, true}) {
+    std::vector<std::string> args = {"fit",      scene,           "--reference", ref,
+                                     "--params", "air_drag.rate", "--out",       fitted()};
+    if (online) args.insert(args.end(), {"--online", "--window", "10", "--learning-rate", "10"});
+    const Outcome r = run(args);
+    ASSERT_EQ(r.code, kOk) << r.out << r.err;
+    const json doc = json::parse(read_text(fitted()));
+    const double rate = doc["modules"][0]["rate"].get<double>();
+    EXPECT_LE(rate, 1e4) << (online ? "online" : "offline");
+    EXPECT_GT(rate, 9000.0) << (online ? "online" : "offline");
+    const Outcome sim = run({"simulate", fitted(), "--seconds", "0.001", "--out", result_path()});
+    EXPECT_EQ(sim.code, kOk) << sim.err;
+    fs::remove_all(out_dir());
+    fs::create_directories(out_dir());
+  }
+}
+
+// --online shares the tape budget and the outputs with the offline fit: they
+// are checked before the run, not after it (a missing folder used to end a
+// whole online pass with an error and nothing kept; a NaN budget was cast to
+// a size).
+TEST_F(CliFit, OnlineOptionsAreCheckedBeforeTheRun) {
+  const std::string ref = write("reference.csv", "time,node,x,y,z\n0.1,0,0,0,0\n");
+  const std::string online[] = {"--online", "--window", "10"};
+  auto args = [&](std::vector<std::string> extra, const std::string& out) {
+    std::vector<std::string> a = {"fit", scene_asset("chain"), "--reference", ref, "--out", out};
+    a.insert(a.end(), std::begin(online), std::end(online));
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  for (const char* budget : {"nan", "-1", "0", "1e30"})
+    expect_input_error(args({"--tape-budget", budget}, fitted()), {"--tape-budget"});
+  expect_input_error(args({}, (out_dir() / "no" / "such" / "FITTED.json").string()),
+                     {"--out", "does not exist"});
+  expect_input_error(args({"--per-element", "--smoothness", "1"}, fitted()),
+                     {"--smoothness", "online"});
+}
+
+// FITTED.json or a companion (FITTED.loss.csv, ...) over the scene or the
+// reference, or onto a folder: refused before the fit, the inputs untouched.
+// It used to overwrite them, or fail to write once the fit was done.
+TEST_F(CliFit, AnOutputOverAnInputOrOntoAFolderIsRefused) {
+  const std::string scene = write("scene.json", read_text(scene_asset("chain")));
+  const std::string ref = write("x.loss.csv", "time,node,x,y,z\n0.1,0,0,2,0\n");
+  fs::create_directories(out_dir() / "folder.json");
+  for (const bool online : {false, true})
+    for (const std::string& out :
+         {scene, (dir_ / "x.json").string(), (dir_ / "x.loss.csv").string(),
+          (out_dir() / "folder.json").string()}) {
+      std::vector<std::string> args = {"fit", scene, "--reference", ref, "--out", out};
+      if (online) args.push_back("--online");
+      const Outcome r = run(args);
+      EXPECT_EQ(r.code, kInputError) << out << ": " << r.err;
+      EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+      EXPECT_EQ(read_text(scene), read_text(scene_asset("chain")));
+      EXPECT_EQ(read_text(ref), "time,node,x,y,z\n0.1,0,0,2,0\n");
+      EXPECT_EQ(files_in_out_dir(), std::vector<std::string>{"folder.json"});
+    }
+}
+
+// A side file may hold a weight of 0 (a spring of no length); a per-element fit
+// in log space cannot start from it: refused naming the parameter, where it
+// used to start at log 0 = -inf and report the scene's own loss as not finite.
+TEST_F(CliFit, APerElementWeightOfZeroIsRefusedByName) {
+  std::string springs;
+  for (int i = 0; i < 9; ++i)
+    springs += std::string(i ? "," : "") + "{\"a\": " + std::to_string(i) +
+               ", \"b\": " + std::to_string(i + 1) +
+               ", \"family\": \"structural\", \"stiffness\": 50, \"damping\": 0.1, "
+               "\"rest_length\": " +
+               (i == 3 ? "0" : "0.1") + "}";
+  write("w.json", "{\"springs\": [" + springs + "], \"node_mass\": [" +
+                      "0.02,0.02,0.02,0.02,0.02,0.02,0.02,0.02,0.02,0.02]}");
+  const std::string scene =
+      write("scene.json", with(read_text(scene_asset("chain")), "\"solver\"",
+                               "\"element_weights\": \"w.json\", \"solver\""));
+  const std::string ref = write("reference.csv", "time,node,x,y,z\n0.01,5,0,1.5,0\n");
+  expect_input_error({"fit", scene, "--reference", ref, "--per-element", "--params", "rest_length",
+                      "--out", fitted()},
+                     {"--params", "rest_length", "> 0"});
+}
+
+// The smoothness term ties every two springs of a family that share a node: a
+// fan of 9000 triangles round one vertex is 40 million pairs (and 40 GB at
+// 100000). Counted first and refused, where it used to be allocated.
+TEST_F(CliFit, ARegulariserWithTooManyPairsIsRefusedBeforeItIsBuilt) {
+  constexpr int kRim = 9000;
+  std::string obj = "v 0 0 0\n";
+  for (int i = 0; i < kRim; ++i) {
+    const double a = 2 * M_PI * i / kRim;
+    obj +=
+        "v " + std::to_string(10 * std::cos(a)) + " 0 " + std::to_string(10 * std::sin(a)) + "\n";
+  }
+  for (int i = 0; i < kRim; ++i)
+    obj += "f 1 " + std::to_string(i + 2) + " " + std::to_string((i + 1) % kRim + 2) + "\n";
+  write("fan.obj", obj);
+  const std::string scene =
+      write("fan.json",
+            "{\"name\": \"fan\", \"cloth\": {\"mesh\": {\"obj\": \"fan.obj\"}, \"springs\": "
+            "[\"structural\"], \"pins\": [0]}, \"material\": {\"spring_constant\": 200, "
+            "\"node_mass\": 0.01, \"viscosity\": 0.05}, \"solver\": {\"integrator\": \"network\", "
+            "\"dt\": 0.001}}");
+  const std::string ref = write("reference.csv", "time,node,x,y,z\n0.002,0,0,0,0\n");
+  expect_input_error({"fit", scene, "--reference", ref, "--per-element", "--smoothness", "1",
+                      "--params", "spring_constant", "--out", fitted()},
+                     {"--smoothness", "pairs"});
+}
+
+// A time budget shorter than one evaluation: the start is still evaluated and
+// written. It used to stop before any evaluation and report the scene's own
+// loss as not finite (exit 3, nothing written).
+TEST_F(CliFit, ATimeBudgetShorterThanOneEvaluationKeepsTheStart) {
+  const std::string ref = write("reference.csv", "time,node,x,y,z\n0.01,5,0,1.5,0\n");
+  const Outcome r = run({"fit", scene_asset("chain"), "--reference", ref, "--params",
+                         "spring_constant", "--time-budget", "1e-300", "--out", fitted()});
+  EXPECT_EQ(r.code, kOk) << r.out << r.err;
+  EXPECT_NE(r.out.find("time_budget"), std::string::npos) << r.out;
+  EXPECT_NEAR(load_scene(fitted()).material.spring_constant, 50.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test

@@ -4,6 +4,8 @@
 #include <numeric>
 #include <random>
 
+#include <tuple>
+
 #include "cli_fixture.h"
 #include "grid_builder.h"
 #include "mesh_node_order.h"
@@ -171,6 +173,31 @@ TEST_F(CliRecord, BadOptionsWriteNothing) {
   expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "1e6", "--out",
                       result_path(), "--record", out("r.motion"), "--record-fps", "10000"},
                      {"--record", "node positions"});
+}
+
+// An output over an input, or onto a folder: refused before the run. The scene
+// itself used to be replaced by the recording (and a folder failed only once
+// the whole run was done).
+TEST_F(CliRecord, AnOutputOverTheSceneOrOntoAFolderIsRefused) {
+  const std::string scene = write("scene.json", read_text(scene_asset("chain")));
+  const std::string folder = out("folder.pc2");
+  for (const auto& [option, path, mention] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--record", scene, "reads"},
+           {"--record", (dir_ / "." / "scene.json").string(), "reads"},
+           {"--record", folder, "folder"},
+           {"--export-pc2", folder, "folder"}}) {
+    fs::create_directories(folder);
+    const Outcome r =
+        run({"simulate", scene, "--seconds", "0.05", "--out", result_path(), option, path});
+    EXPECT_EQ(r.code, kInputError) << option << " " << path << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(result_path()));
+    EXPECT_EQ(read_text(scene), read_text(scene_asset("chain")));
+    fs::remove_all(folder);
+    EXPECT_TRUE(files_in_out_dir().empty());
+  }
 }
 
 }  // namespace

@@ -229,6 +229,22 @@ TEST(LearnGradient, EveryWeightPerElementWithContactAndWind) {
 
 // The loss compares what `simulate` would produce: the rollout's states at
 // step-aligned frames are the simulation's, bit for bit.
+// The adaptive steps may be far below dt (a stiff cloth): the plan stops at
+// its step cap, where a reference of 1000 s on a stiff cloth used to plan for
+// minutes and gigabytes. Both kinds of plan.
+TEST(LearnRollout, APlanStopsAtItsStepCap) {
+  for (const bool adaptive : {true, false}) {
+    const Scene scene = hanging_scene(adaptive);
+    EXPECT_GT(plan_steps(scene, 0.25).count(), 10u);
+    try {
+      plan_steps(scene, 0.25, 10);
+      ADD_FAILURE() << "a plan of more than 10 steps was made";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than 10 steps"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(LearnRollout, IsTheSimulationItDifferentiates) {
   for (bool adaptive : {false, true}) {
     SceneBuilder b = sliding_drop();

@@ -110,5 +110,38 @@ TEST(MarkerCsvErrors, AWrongFieldCountIsNamed) {
   expect_reference_error(kHeader + "0,1,0,0,0,0\n", kNodes, 2, "after z", "found 6");
 }
 
+// Each frame costs far more than its rows: 2^25 one-row frames would take 10
+// GB. A reference holds at most 2^20 frames (distinct times).
+TEST(MarkerCsvErrors, MoreFramesThanAReferenceMayHoldAreRefused) {
+  std::string text = kHeader;
+  for (std::size_t k = 1; k <= kMaxReferenceFrames + 1; ++k)
+    text += std::to_string(k) + ",0,0,0,0\n";
+  expect_reference_error(text, kNodes, static_cast<int>(kMaxReferenceFrames) + 2, "time",
+                         "1048576 frames");
+}
+
+// A binary file or a stray byte quoted in a message: a carriage return, a NUL
+// or a terminal escape would break the one-line message (or the terminal), so
+// they are shown as \xNN.
+TEST(MarkerCsvErrors, ControlBytesInAMessageAreEscaped) {
+  using namespace std::string_literals;
+  const std::string cases[] = {"\x1b[2J\rtime\0,node,x,y,z\n0,1,0,0,0\n"s,
+                               kHeader + "0,1\0,0,0,0\n"s};
+  for (const std::string& text : cases) {
+    try {
+      parse_reference(text, "markers.csv", kNodes);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      for (const char c : what)
+        EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            << "a control byte " << int(c) << " in the message";
+      EXPECT_TRUE(what.find("\\x1b") != std::string::npos ||
+                  what.find("\\x00") != std::string::npos)
+          << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace neurocloth

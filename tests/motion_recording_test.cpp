@@ -202,11 +202,19 @@ TEST(MotionRecordingErrors, AHugeFrameCountIsRefusedBeforeAllocating) {
       with_header(R"({"node_count":3,"frame_count":1000000000000000,"fps":60,"units":"m"})"),
       kNodes, 2, "frame_count", "more than");
   expect_reference_error(
-      with_header(R"({"node_count":3,"frame_count":5000000,"fps":60,"units":"m"})"), kNodes, 2,
+      with_header(R"({"node_count":3,"frame_count":1000000,"fps":60,"units":"m"})"), kNodes, 2,
       "frame_count", "truncated");
   expect_reference_error(
       with_header(R"({"node_count":3,"frame_count":18446744073709551615,"fps":60,"units":"m"})"),
       kNodes, 2, "frame_count");
+}
+
+// A frame costs far more than its positions: a recording of one node may hold
+// 2^20 frames, not 2^25 (10 GB of frames for a 800 MB file).
+TEST(MotionRecordingErrors, MoreFramesThanAReferenceMayHoldAreRefused) {
+  expect_reference_error(
+      with_header(R"({"node_count":1,"frame_count":1048577,"fps":60,"units":"m"})"), 1, 2,
+      "frame_count", "1048576");
 }
 
 TEST(MotionRecordingErrors, ANonFinitePositionOrTimeIsNamed) {

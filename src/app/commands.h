@@ -140,5 +140,8 @@ FitProblem load_fit_problem(const FitOptions& options, const Scene& scene);
 // and its name in the progress line and the CSV ("spring_constant_geomean").
 std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta);
 std::vector<std::string> block_names(const FitProblem& problem);
+// Refuses an output of the fit (FITTED.json and its companions) that is one of
+// the files `scene` was read from (InputError naming --out).
+void check_fit_outputs(const FitOptions& options, const Scene& scene);
 
 }  // namespace neurocloth

@@ -15,6 +15,7 @@
 #include "input_error.h"
 #include "loglog_chart.h"
 #include "long_run.h"
+#include "motion_outputs.h"
 #include "optimizer.h"
 #include "reference_motion.h"
 #include "scene.h"
@@ -39,14 +40,30 @@ OptimizerMethod check_options(const FitOptions& o) {
     refuse("--smoothness", "must be a finite number >= 0");
   if (o.smoothness > 0 && !o.per_element)
     refuse("--smoothness", "smooths per-element weights: it needs --per-element");
+  if (o.smoothness > 0 && o.online)
+    refuse("--smoothness", "an online fit has no regulariser: drop --smoothness or --online");
   if (!(o.tape_budget_mb > 0) || !(o.tape_budget_mb < 1e9))
     refuse("--tape-budget", "must be a number of MB > 0");
   if (o.out.empty()) refuse("--out", "must name the FITTED.json to write");
   const std::filesystem::path folder = std::filesystem::absolute(o.out).parent_path();
   if (!std::filesystem::is_directory(folder))
     refuse("--out", "the folder " + folder.string() + " does not exist");
+  const FittedFiles files = fitted_file_names(o.out);
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png})
+    check_output_path("--out", f, {o.scene, o.reference});
   return method;
 }
+
+}  // namespace
+
+// Once the scene is read: its side files are inputs too.
+void check_fit_outputs(const FitOptions& o, const Scene& scene) {
+  const FittedFiles files = fitted_file_names(o.out);
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png})
+    check_output_path("--out", f, input_files(scene));
+}
+
+namespace {
 
 // What a block stands for in one column (progress line, CSV): its value, or
 // for a per-element block the geometric (log space) or arithmetic mean.
@@ -77,14 +94,15 @@ class ProgressLine {
  public:
   ProgressLine(const FitOptions& o) : options_(o), terminal_(isatty(fileno(stdout)) != 0) {}
 
-  void show(const IterationInfo& it, double rms_m, const std::vector<Column>& columns) {
+  void show(const IterationInfo& it, const Eigen::VectorXd& theta, double rms_m,
+            const std::vector<Column>& columns) {
     std::string line =
         "iteration " + std::to_string(it.iteration) + "/" + std::to_string(options_.max_iterations);
     char buf[96];
     std::snprintf(buf, sizeof buf, "  loss %.6g  RMS %.4g mm", it.loss, rms_m * 1e3);
     line += buf;
     for (const Column& c : columns) {
-      std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, it.theta));
+      std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, theta));
       line += buf;
     }
     line += "  " + eta(it);
@@ -180,7 +198,9 @@ int exit_code(StopReason reason) {
 
 }  // namespace
 
+// Checks the outputs against the scene's inputs first (check_fit_outputs).
 FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
+  check_fit_outputs(o, scene);
   const ReferenceMotion reference =
       read_reference(o.reference, scene.topology.rest_positions.size());
   FitSettings settings;
@@ -206,6 +226,8 @@ std::vector<std::string> block_names(const FitProblem& problem) {
 }
 
 int run_fit(const FitOptions& o) {
+  // The online mode shares the tape budget and the outputs: checked before
+  // anything runs, whichever mode.
   OptimizerOptions opt;
   opt.method = check_options(o);
   if (o.online) return run_fit_online(o);
@@ -236,24 +258,30 @@ int run_fit(const FitOptions& o) {
   opt.should_stop = [] { return InterruptScope::interrupted(); };
   const OptimizerResult result =
       minimize(objective, problem.initial(), opt, [&](const IterationInfo& it) {
-        FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, it.theta), it.seconds, {}};
+        const Eigen::VectorXd theta = problem.inside_limits(it.theta);
+        FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, theta), it.seconds, {}};
         for (const Column& c : columns)
-          row.parameters.push_back(column_value(c, it.theta));
+          row.parameters.push_back(column_value(c, theta));
         history.rows.push_back(row);
-        progress.show(it, row.rms_m, columns);
+        progress.show(it, theta, row.rms_m, columns);
         return !InterruptScope::interrupted();
       });
   progress.close();
   std::printf("stopped (%s): %s\n", to_string(result.reason), result.message.c_str());
   std::printf("memory: the tape held at most %.3g MB (--tape-budget %g MB)\n",
               double(problem.peak_tape_bytes()) / double(1 << 20), o.tape_budget_mb);
+  if (std::isnan(result.best_loss) && result.reason == StopReason::stopped) {
+    std::fprintf(stderr, "interrupted before the first evaluation; nothing written\n");
+    return kExitInterrupted;
+  }
   if (std::isnan(result.best_loss)) {
     std::fprintf(stderr,
                  "error: the scene's own parameters already give a non-finite loss; nothing "
                  "written\n");
     return kExitDiverged;
   }
-  const Eigen::VectorXd& best = result.best_theta;
+  // The loss at theta is the loss inside the limits: the values written.
+  const Eigen::VectorXd best = problem.inside_limits(result.best_theta);
 
   UncertaintyReport uncertainty;
   if (result.reason == StopReason::stopped) {

@@ -57,7 +57,7 @@ int run_fit_online(const FitOptions& o) {
     if (u.observed == 0) continue;
     last_rms = u.rms_m;
     last_loss = u.loss;
-    const std::vector<double> values = columns(online.theta());
+    const std::vector<double> values = columns(problem.inside_limits(online.theta()));
     history.rows.push_back({windows, u.loss, u.rms_m, u.time, values});
     std::string line;
     char buf[96];
@@ -88,7 +88,7 @@ int run_fit_online(const FitOptions& o) {
   summary.iterations = windows;
   summary.loss = last_loss;
   summary.rms_m = last_rms;
-  const std::vector<double> values = columns(online.theta());
+  const std::vector<double> values = columns(problem.inside_limits(online.theta()));
   for (std::size_t c = 0; c < values.size(); ++c) {
     ParameterUncertainty p;
     p.name = history.columns[c];

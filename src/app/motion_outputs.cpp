@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "element_weights.h"
 #include "input_error.h"
+#include "physical_limits.h"
 #include "reference_motion.h"
 
 namespace neurocloth {
@@ -14,7 +17,36 @@ double planned_frames(double seconds, double fps) {
   return std::floor(seconds * fps) + 1;
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::equivalent(a, b, ec) && !ec) return true;  // links, "./x" and "x", ...
+  const fs::path x = fs::absolute(a, ec).lexically_normal();
+  if (ec) return false;
+  return x == fs::absolute(b, ec).lexically_normal() && !ec;
+}
+
 }  // namespace
+
+void check_output_path(const char* option, const std::string& path,
+                       const std::vector<std::string>& inputs) {
+  if (path.empty()) return;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError("command line", option, "'" + path + "' is a folder, not a file to write");
+  for (const std::string& in : inputs)
+    if (!in.empty() && same_file(path, in))
+      throw InputError("command line", option,
+                       "'" + path + "' is " + (in == path ? "" : "'" + in + "', ") +
+                           "a file this command reads: writing it would destroy it");
+}
+
+std::vector<std::string> input_files(const Scene& scene) {
+  std::vector<std::string> files = {scene.path};
+  if (scene.fuzzy_material) files.push_back(scene.fuzzy_material->rules_path);
+  if (scene.element_weights) files.push_back(scene.element_weights->path);
+  return files;
+}
 
 MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : scene_(scene) {
   const char* option = o.record ? "--record" : "--export-pc2";
@@ -33,6 +65,12 @@ MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : sce
                          std::to_string(nodes) + " nodes: more than the " +
                          std::to_string(kMaxReferenceObservations) +
                          " node positions a recording may hold; lower --record-fps");
+  if (frames > static_cast<double>(kMaxReferenceFrames))
+    throw InputError("command line", option,
+                     "--seconds " + show_number(o.seconds) + " at " + show_number(fps_) +
+                         " frames per second is " + show_number(frames) +
+                         " frames: more than the " + std::to_string(kMaxReferenceFrames) +
+                         " a recording may hold; lower --record-fps");
   if (o.export_pc2) mesh_path_ = pc2_mesh_path(*o.export_pc2);
   // Two outputs at one path would leave only the one written last.
   const std::vector<std::string> paths = {o.out, o.record.value_or(""), o.export_pc2.value_or(""),
@@ -42,6 +80,10 @@ MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : sce
       if (!paths[i].empty() && paths[i] == paths[j])
         throw InputError("command line", option,
                          "'" + paths[i] + "' is named for two outputs; give each its own file");
+  const std::vector<std::string> inputs = input_files(scene);
+  check_output_path("--record", o.record.value_or(""), inputs);
+  check_output_path("--export-pc2", o.export_pc2.value_or(""), inputs);
+  check_output_path("--export-pc2", mesh_path_, inputs);
   if (o.record) recording_.emplace(*o.record, RecordingInfo{scene.name, nodes, fps_});
   if (o.export_pc2) pc2_.emplace(*o.export_pc2, nodes);
   positions_.resize(nodes);

@@ -18,6 +18,14 @@
 
 namespace neurocloth {
 
+// Refuses (InputError naming `option`) an output path that is a directory or
+// one of the command's input files (`inputs`; empty ones are skipped): the
+// run would end by failing to write, or by overwriting what it read.
+void check_output_path(const char* option, const std::string& path,
+                       const std::vector<std::string>& inputs);
+// The files `scene` was read from: the scene, its rule base and its side file.
+std::vector<std::string> input_files(const Scene& scene);
+
 class MotionOutputs {
  public:
   // Checks the options (InputError naming the option) and opens the files.

@@ -10,9 +10,6 @@
 namespace neurocloth {
 namespace {
 
-// A spring spans at most the 20 km across which every node lies; zero only
-// where the mesh itself has a zero-length edge (such a spring exerts no force).
-constexpr Limit kRestLength{0, 2e4, "m", "every node lies within 10 km of the origin"};
 // The side file of the largest cloth a scene may build (4 million nodes) with room to spare.
 constexpr std::size_t kMaxWeightsBytes = 1u << 30;
 
@@ -98,7 +95,7 @@ ElementWeights read_element_weights(const std::string& path, const ClothTopology
     w.damping[s] =
         in.number(in.member(e, field, "damping"), field + ".damping", limits::kViscosity);
     w.rest_length[s] =
-        in.number(in.member(e, field, "rest_length"), field + ".rest_length", kRestLength);
+        in.number(in.member(e, field, "rest_length"), field + ".rest_length", limits::kRestLength);
   }
 
   const nlohmann::json& masses = in.member(root, "", "node_mass");

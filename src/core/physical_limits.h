@@ -32,6 +32,9 @@ inline constexpr Limit kMeshScale{1e-6, 1e6, "", "a scale beyond 1e-6 to 1e6 is 
 inline constexpr Limit kSize{1e-4, 2e4, "m", "a collider is between 0.1 mm and 20 km across"};
 inline constexpr Limit kThickness{0, 1, "m", "a contact layer is at most 1 m thick"};
 inline constexpr Limit kGap{1e-5, 1, "m", "cloth keeps between 0.01 mm and 1 m from itself"};
+// A spring spans at most the 20 km across which every node lies; zero only
+// where the mesh itself has a zero-length edge (such a spring exerts no force).
+inline constexpr Limit kRestLength{0, 2e4, "m", "every node lies within 10 km of the origin"};
 // Material.
 inline constexpr Limit kNodeMass{1e-9, 1e4, "kg",
                                  "a mass point weighs between a microgram and ten tonnes"};

@@ -1,6 +1,7 @@
 #include "fit_problem.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -10,6 +11,7 @@
 #include "input_error.h"
 #include "modules/module_set.h"
 #include "parameter_id.h"
+#include "physical_limits.h"
 #include "rollout.h"
 
 namespace neurocloth {
@@ -35,9 +37,49 @@ struct Unknown {
   int declaration = -1;                // the module's index in the scene's declarations
   ParameterId id;                      // module parameter (parameter and axis)
   double base = 1;                     // family value at the start (rest length: 1, a scale)
+  // The scene's limits on the value (physical_limits.h): a fitted value stays
+  // inside them, so FITTED.json loads (Impl::inside).
+  double low = -HUGE_VAL, high = HUGE_VAL;
   // Per-element blocks: pairs of neighbouring elements the smoothness term ties.
   std::vector<std::pair<std::int32_t, std::int32_t>> neighbours;
 };
+
+// The scene's limit on what a target sets (module parameters: module_limit).
+Limit target_limit(Target t) {
+  switch (t) {
+    case Target::stiffness:
+      return limits::kStiffness;
+    case Target::viscosity:
+      return limits::kViscosity;
+    case Target::node_mass:
+      return limits::kNodeMass;
+    case Target::rest_length:
+      return limits::kRestLength;
+    case Target::friction:
+      return limits::kFriction;
+    default:
+      return {-HUGE_VAL, HUGE_VAL, "", ""};
+  }
+}
+
+Limit module_limit(ModuleParameter p) {
+  switch (p) {
+    case ModuleParameter::velocity:
+      return limits::kSpeed;
+    case ModuleParameter::rate:
+      return limits::kRate;
+    case ModuleParameter::drag:
+    case ModuleParameter::lift:
+      return limits::kCoefficient;
+    case ModuleParameter::friction:
+      return limits::kFriction;
+  }
+  return {-HUGE_VAL, HUGE_VAL, "", ""};
+}
+
+// The smoothness term's pairs of neighbouring elements: 32 M pairs (256 MB),
+// 18 per node of a grid with every family, so a cloth of a million nodes.
+constexpr std::size_t kMaxNeighbourPairs = std::size_t(1) << 25;
 
 [[noreturn]] void refuse(const std::string& message) {
   throw InputError("command line", "--params", message);
@@ -109,6 +151,9 @@ struct FitProblem::Impl {
                   double value, const std::string& unit, bool per_element);
   void plan(const ReferenceMotion& reference);
   void apply(const Eigen::VectorXd& theta);
+  Eigen::VectorXd inside(const Eigen::VectorXd& theta) const;
+  void zero_outside(const Eigen::VectorXd& theta, const Eigen::VectorXd& in,
+                    Eigen::VectorXd& gradient) const;
   double regulariser(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient) const;
   void chain(const Eigen::VectorXd& theta, Eigen::VectorXd& gradient) const;
 };
@@ -159,6 +204,9 @@ void FitProblem::Impl::add_family(const std::string& name, Target target,
   u.per_element = per_element;
   u.elements = std::move(elements);
   u.base = value;
+  const Limit limit = target_limit(target);
+  u.low = limit.low;
+  u.high = limit.high;
   size += u.block.count;
   unknowns.push_back(std::move(u));
 }
@@ -210,7 +258,15 @@ void FitProblem::Impl::parse_parameters() {
       add_family(name, Target::node_mass, all_nodes, mat.node_mass, "kg", pe);
     } else if (name == "rest_length") {
       add_family(name, Target::rest_length, all_springs, 1.0, pe ? "m" : "x scene", pe);
-      if (pe) unknowns.back().base = 0;  // per element: each spring's own length
+      if (pe) {
+        unknowns.back().base = 0;  // per element: each spring's own length
+      } else {                     // a scale: the longest spring stays inside the limit
+        double longest = 0;
+        for (double l : net.springs.rest_length)
+          longest = std::max(longest, l);
+        unknowns.back().low = 0;
+        unknowns.back().high = longest > 0 ? limits::kRestLength.high / longest : HUGE_VAL;
+      }
     } else if (name == "friction") {
       bool used = false;
       for (const auto& c : base.constraints)
@@ -274,14 +330,43 @@ void FitProblem::Impl::parse_parameters() {
         refuse("'" + name + "' is " + std::to_string(*value) +
                " in the scene: a fit in log space needs a start > 0");
       u.base = *value;
+      u.low = module_limit(p.parameter).low;
+      u.high = module_limit(p.parameter).high;
       size += 1;
       unknowns.push_back(std::move(u));
     }
   }
   // Neighbours for the smoothness term: springs of one family that share a
   // node; nodes joined by a structural spring.
+  // Only a fit with a regulariser needs them; their number grows with the
+  // square of a node's springs, so it is counted before anything is stored
+  // (a fan of 100000 triangles round one vertex would ask for 40 GB).
+  std::size_t pairs = 0;
   for (Unknown& u : unknowns) {
-    if (!u.per_element) continue;
+    if (!u.per_element || !(settings.smoothness > 0)) continue;
+    if (u.target == Target::node_mass) {
+      pairs += net.spring_count();
+      continue;
+    }
+    std::vector<std::array<std::size_t, 3>> per_family(net.node_count());  // springs at a node
+    for (const std::int32_t spring : u.elements) {
+      const auto f = static_cast<std::size_t>(net.springs.family[spring]);
+      ++per_family[static_cast<std::size_t>(net.springs.node_a[spring])][f];
+      ++per_family[static_cast<std::size_t>(net.springs.node_b[spring])][f];
+    }
+    for (const auto& counts : per_family)
+      for (const std::size_t k : counts)
+        pairs += k > 1 ? k * (k - 1) / 2 : 0;
+  }
+  if (pairs > kMaxNeighbourPairs)
+    throw InputError("command line", "--smoothness",
+                     "the regulariser would tie " + std::to_string(pairs) +
+                         " pairs of neighbouring elements (nodes with very many springs), more "
+                         "than " +
+                         std::to_string(kMaxNeighbourPairs) +
+                         ": fit this cloth without --smoothness");
+  for (Unknown& u : unknowns) {
+    if (!u.per_element || !(settings.smoothness > 0)) continue;
     if (u.target == Target::node_mass) {
       for (std::size_t s = 0; s < net.spring_count(); ++s)
         if (net.springs.family[s] == SpringFamily::structural)
@@ -314,11 +399,10 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
     throw InputError(ref.path, "time", "the reference ends at t = 0: nothing to fit to");
   // A fit runs the scene to the last frame many times: a reference whose time
   // runs to years would never finish (or allocate a plan of that many steps).
-  constexpr double kMaxSteps = 1e7;
-  if (!(duration / scene.solver.dt <= kMaxSteps))
+  if (!(duration / scene.solver.dt <= static_cast<double>(kMaxFitSteps)))
     throw InputError(ref.path, "time",
-                     "the reference ends at t = " + std::to_string(duration) +
-                         " s: " + std::to_string(duration / scene.solver.dt) +
+                     "the reference ends at t = " + show_number(duration) +
+                         " s: " + show_number(duration / scene.solver.dt) +
                          " steps of the scene's dt; a fit runs at most 1e7");
   StepPlan steps;
   try {
@@ -410,6 +494,35 @@ void FitProblem::Impl::apply(const Eigen::VectorXd& theta) {
     }
 }
 
+// theta with every value brought inside its limit: the loss at theta is the
+// loss there, flat beyond the limit (zero_outside).
+Eigen::VectorXd FitProblem::Impl::inside(const Eigen::VectorXd& theta) const {
+  Eigen::VectorXd in = theta;
+  for (const Unknown& u : unknowns) {
+    double lo = u.low, hi = u.high;
+    if (u.block.log_space) {  // exp(log(x)) may round past x: step inside
+      lo = u.low > 0 ? std::log(u.low) : -HUGE_VAL;
+      hi = std::log(u.high);
+      while (std::exp(lo) < u.low)
+        lo = std::nextafter(lo, HUGE_VAL);
+      while (std::exp(hi) > u.high)
+        hi = std::nextafter(hi, -HUGE_VAL);
+    }
+    for (std::size_t e = 0; e < u.block.count; ++e) {
+      double& t = in[static_cast<Eigen::Index>(u.block.offset + e)];
+      t = std::clamp(t, lo, hi);
+    }
+  }
+  return in;
+}
+
+// Beyond a limit the loss does not change: no gradient along a clamped unknown.
+void FitProblem::Impl::zero_outside(const Eigen::VectorXd& theta, const Eigen::VectorXd& in,
+                                    Eigen::VectorXd& gradient) const {
+  for (Eigen::Index i = 0; i < theta.size(); ++i)
+    if (in[i] != theta[i]) gradient[i] = 0;
+}
+
 double FitProblem::Impl::regulariser(const Eigen::VectorXd& theta, Eigen::VectorXd* grad) const {
   const double s = settings.smoothness;
   if (!(s > 0)) return 0;
@@ -480,6 +593,17 @@ FitProblem::FitProblem(const Scene& scene, const ReferenceMotion& reference,
   m.build_model();
   m.plan(reference);
   m.parse_parameters();
+  // A per-element weight of 0 (a side file may hold one: a spring without
+  // stiffness, damping or length) has no logarithm to start from.
+  const Eigen::VectorXd start = initial();
+  for (const Unknown& u : m.unknowns)
+    for (std::size_t e = 0; e < u.block.count; ++e)
+      if (!std::isfinite(start[static_cast<Eigen::Index>(u.block.offset + e)]))
+        refuse("'" + u.block.name + "' of " +
+               (u.target == Target::node_mass ? "node " : "spring ") +
+               std::to_string(u.elements[e]) +
+               " is 0 in the scene: a fit in log space needs every start > 0 (leave it out, or "
+               "fit it per family)");
   bool masses = false, friction = false;
   for (const Unknown& u : m.unknowns) {
     masses |= u.target == Target::node_mass;
@@ -519,7 +643,12 @@ Eigen::VectorXd FitProblem::initial() const {
   return theta;
 }
 
-Eigen::VectorXd FitProblem::values(const Eigen::VectorXd& theta) const {
+Eigen::VectorXd FitProblem::inside_limits(const Eigen::VectorXd& theta) const {
+  return impl_->inside(theta);
+}
+
+Eigen::VectorXd FitProblem::values(const Eigen::VectorXd& theta_in) const {
+  const Eigen::VectorXd theta = impl_->inside(theta_in);
   Eigen::VectorXd v = theta;
   for (const FitBlock& b : impl_->blocks)
     if (b.log_space)
@@ -537,15 +666,18 @@ double FitProblem::loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient)
     if (gradient) gradient->setConstant(static_cast<Eigen::Index>(m.size), std::nan(""));
     return std::nan("");
   }
-  m.apply(theta);
+  const Eigen::VectorXd in = m.inside(theta);
+  m.apply(in);
   const double data = m.rollout->run(m.model, gradient ? &m.gradients : nullptr);
-  if (!gradient) return data + m.regulariser(theta, nullptr);
+  if (!gradient) return data + m.regulariser(in, nullptr);
   if (!std::isfinite(data)) {
     gradient->setConstant(static_cast<Eigen::Index>(m.size), std::nan(""));
     return data;
   }
-  m.chain(theta, *gradient);
-  return data + m.regulariser(theta, gradient);
+  m.chain(in, *gradient);
+  const double r = m.regulariser(in, gradient);
+  m.zero_outside(theta, in, *gradient);
+  return data + r;
 }
 
 double FitProblem::window_loss(const Eigen::VectorXd& theta, const ClothState& state,
@@ -555,15 +687,17 @@ double FitProblem::window_loss(const Eigen::VectorXd& theta, const ClothState& s
   if (first >= m.steps.count() || count == 0)
     throw std::invalid_argument("FitProblem::window_loss: no such steps");
   count = std::min(count, m.steps.count() - first);
-  m.apply(theta);
+  const Eigen::VectorXd in = m.inside(theta);
+  m.apply(in);
   Rollout window(state, window_of(m.steps, first, count), window_of(m.observed, first, count),
                  m.settings.tape_budget_bytes);
   const double data = window.run(m.model, gradient ? &m.gradients : nullptr);
   if (end) *end = window.final_state();
   if (gradient) {
-    if (std::isfinite(data))
-      m.chain(theta, *gradient);
-    else
+    if (std::isfinite(data)) {
+      m.chain(in, *gradient);
+      m.zero_outside(theta, in, *gradient);
+    } else
       gradient->setConstant(static_cast<Eigen::Index>(m.size), std::nan(""));
   }
   return data;
@@ -627,7 +761,7 @@ bool FitProblem::reference_state(double t, ClothState& state) const {
 
 double FitProblem::rms_error(const Eigen::VectorXd& theta) {
   Impl& m = *impl_;
-  m.apply(theta);
+  m.apply(m.inside(theta));
   const double data = m.rollout->run(m.model, nullptr);
   return std::sqrt(2.0 * data / static_cast<double>(std::max<std::size_t>(1, observations())));
 }
@@ -642,7 +776,8 @@ std::size_t FitProblem::peak_tape_bytes() const {
   return impl_->rollout->peak_tape_bytes();
 }
 
-Scene FitProblem::fitted_scene(const Eigen::VectorXd& theta) const {
+Scene FitProblem::fitted_scene(const Eigen::VectorXd& theta_in) const {
+  const Eigen::VectorXd theta = impl_->inside(theta_in);
   Scene s = impl_->scene;
   for (const Unknown& u : impl_->unknowns) {
     if (u.per_element) continue;
@@ -674,7 +809,7 @@ Scene FitProblem::fitted_scene(const Eigen::VectorXd& theta) const {
 
 MaterialWeights FitProblem::element_weights(const Eigen::VectorXd& theta) const {
   if (!impl_->settings.per_element) return {};
-  impl_->apply(theta);
+  impl_->apply(impl_->inside(theta));
   const ClothNetwork& net = impl_->model.net;
   return {net.springs.stiffness, net.springs.damping, net.masses.inverse_mass, net.masses.friction};
 }
@@ -682,7 +817,7 @@ MaterialWeights FitProblem::element_weights(const Eigen::VectorXd& theta) const 
 std::vector<double> FitProblem::element_rest_lengths(const Eigen::VectorXd& theta) const {
   for (const Unknown& u : impl_->unknowns)
     if (u.target == Target::rest_length) {
-      impl_->apply(theta);
+      impl_->apply(impl_->inside(theta));
       return impl_->model.net.springs.rest_length;
     }
   return {};

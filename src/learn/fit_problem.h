@@ -59,7 +59,12 @@ class FitProblem {
   const std::vector<FitBlock>& blocks() const;
   // The scene's own values, in theta's coordinates: where a fit starts.
   Eigen::VectorXd initial() const;
-  // The values theta stands for (exp of the log-space blocks).
+  // theta with every value brought inside the scene's limits (physical_limits.h:
+  // a stiffness at most 1e9 N/m, a wind at most 1000 m/s, ...). Every function
+  // here reads theta through it: beyond a limit the loss is flat (its gradient
+  // there is zero), so a fit can reach a limit but never write a value past it.
+  Eigen::VectorXd inside_limits(const Eigen::VectorXd& theta) const;
+  // The values theta stands for (exp of the log-space blocks), inside the limits.
   Eigen::VectorXd values(const Eigen::VectorXd& theta) const;
 
   // E(theta) = sum_frames sum_observed 1/2 |p_k(t) - y_k(t)|^2 (m^2), plus the

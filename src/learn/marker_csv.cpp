@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string_view>
@@ -41,8 +42,21 @@ bool same_name(std::string_view a, const char* b) {
   return i == a.size() && !b[i];
 }
 
+// A field quoted for a one-line message: at most 40 bytes, control bytes (a
+// NUL, a carriage return, a terminal escape in a binary file) as \xNN.
 std::string shown(std::string_view s) {
-  return "'" + std::string(s.substr(0, 40)) + (s.size() > 40 ? "...'" : "'");
+  std::string out = "'";
+  for (const char c : s.substr(0, 40)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out + (s.size() > 40 ? "...'" : "'");
 }
 
 // Reads the rows one by one, building frames as their times go by.
@@ -85,6 +99,11 @@ class MarkerReader {
                          "goes back: " + std::string(fields[0]) + " s after " +
                              std::to_string(motion_.frames.back().time) +
                              " s (frames must come in increasing time, a frame's rows together)",
+                         line_);
+      if (motion_.frames.size() == kMaxReferenceFrames)
+        throw InputError(path_, "time",
+                         "more than " + std::to_string(kMaxReferenceFrames) +
+                             " frames (distinct times): more than a reference may hold",
                          line_);
       motion_.frames.emplace_back();
       motion_.frames.back().time = time;

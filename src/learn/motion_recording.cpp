@@ -95,10 +95,12 @@ void RecordingWriter::add_frame(double time, const std::vector<Vec3>& positions)
                            " positions for " + std::to_string(info_.node_count) + " nodes");
   if (!std::isfinite(time) || time < 0 || (!times_.empty() && !(time > times_.back())))
     throw std::logic_error(path() + ": frame times must be finite, >= 0 and increasing");
-  if (frame_count() + 1 > kMaxReferenceObservations / info_.node_count)
+  if (frame_count() + 1 > kMaxReferenceObservations / info_.node_count ||
+      frame_count() + 1 > kMaxReferenceFrames)
     throw std::runtime_error(path() + ": a recording holds at most " +
                              std::to_string(kMaxReferenceObservations) +
-                             " node positions (frames x nodes); record fewer frames");
+                             " node positions (frames x nodes) and " +
+                             std::to_string(kMaxReferenceFrames) + " frames; record fewer frames");
   unsigned char* out = frame_bytes_.data();
   put_double(out, time);
   for (std::size_t k = 0; k < positions.size(); ++k) {
@@ -184,6 +186,11 @@ ReferenceMotion parse_motion_recording(const std::string& bytes, const std::stri
                      std::to_string(frames) + " frames of " + std::to_string(nodes) +
                          " nodes: more than the " + std::to_string(kMaxReferenceObservations) +
                          " node positions a reference may hold",
+                     2);
+  if (frames > kMaxReferenceFrames)
+    throw InputError(path, "frame_count",
+                     std::to_string(frames) + " frames: more than the " +
+                         std::to_string(kMaxReferenceFrames) + " a reference may hold",
                      2);
   // The frames: exactly as many bytes as the header says, checked before
   // anything is allocated for them.

@@ -42,7 +42,7 @@ class RecordingWriter {
   // Appends a frame: `positions` in file order, `time` after the last frame's.
   // Throws std::runtime_error, writing nothing of the frame, when a position
   // is NaN or infinite (never written to a file) or the recording would pass
-  // kMaxReferenceObservations (the reader would refuse it).
+  // kMaxReferenceObservations or kMaxReferenceFrames (the reader would refuse it).
   void add_frame(double time, const std::vector<Vec3>& positions);
   // Forgets the frames after `time` (a run that diverged rolled back to it).
   void drop_frames_after(double time);

@@ -48,7 +48,9 @@ class Driver {
   double evaluate(const Vector& theta, Vector* gradient) {
     if (options_.should_stop && options_.should_stop())
       throw Stop{StopReason::stopped, "stopped on request"};
-    if (options_.time_budget > 0 && elapsed() >= options_.time_budget)
+    // The start is always evaluated: a budget shorter than one evaluation
+    // still ends with the start's loss, not with none.
+    if (options_.time_budget > 0 && result_.evaluations > 0 && elapsed() >= options_.time_budget)
       throw Stop{StopReason::time_budget,
                  "the time budget of " + number(options_.time_budget) + " s ran out"};
     double loss = 0;

@@ -38,6 +38,10 @@ struct ReferenceMotion {
 // the file states.
 inline constexpr std::size_t kMaxReferenceBytes = std::size_t(1) << 30;  // 1 GiB
 inline constexpr std::size_t kMaxReferenceObservations = std::size_t(1) << 25;
+// Each frame costs about 300 bytes beyond its positions: a frame of one marker
+// per row would make 2^25 observations 10 GB. 2^20 frames is 4.8 hours at 60
+// frames per second (300 MB at most).
+inline constexpr std::size_t kMaxReferenceFrames = std::size_t(1) << 20;
 // A coordinate beyond 1000 km of the origin is a unit mistake (mm read as m
 // a million times over), and its square would overflow the fit's sums.
 inline constexpr double kMaxReferenceCoordinate = 1e6;  // m

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "integrator.h"
+#include "physical_limits.h"
 #include "scene.h"
 
 namespace neurocloth {
@@ -250,7 +251,7 @@ ObservationPlan window_of(const ObservationPlan& obs, std::size_t first, std::si
   return w;
 }
 
-StepPlan plan_steps(const Scene& scene, double duration) {
+StepPlan plan_steps(const Scene& scene, double duration, std::size_t max_steps) {
   StepPlan plan;
   if (!(duration > 0)) return plan;
   const double dt = scene.solver.dt;
@@ -259,6 +260,10 @@ StepPlan plan_steps(const Scene& scene, double duration) {
     // the end time exact.
     double t = 0;
     while (t < duration) {
+      if (plan.count() == max_steps)
+        throw std::runtime_error("more than " + std::to_string(max_steps) + " steps of " +
+                                 show_number(dt) + " s to reach t = " + show_number(duration) +
+                                 " s");
       const double remaining = duration - t;
       const bool last = remaining <= dt * (1.0 + 1e-9);
       const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
@@ -272,6 +277,15 @@ StepPlan plan_steps(const Scene& scene, double duration) {
   Simulation sim = scene.make_simulation();
   sim.set_observer([&](const StepEvent& e) {
     if (!e.accepted) return;
+    // The steps may be far below dt (a stiff cloth): the count, not the
+    // duration, bounds the plan and every run of the fit. The simulation is
+    // this function's own, dropped as the exception leaves.
+    if (plan.count() == max_steps)
+      throw std::runtime_error("the scene's own adaptive run takes more than " +
+                               std::to_string(max_steps) +
+                               " steps to reach t = " + show_number(duration) + " s (steps of " +
+                               show_number(e.step) + " s at t = " + show_number(e.time) +
+                               " s); a fit runs at most that many: a shorter reference");
     plan.start.push_back(e.time);
     plan.size.push_back(e.step);
   });

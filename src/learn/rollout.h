@@ -28,6 +28,10 @@ struct RolloutModel {
 
 // The steps a run takes, start time and size each: a fixed step, or the
 // accepted steps of the adaptive propagation held fixed while weights change.
+// A fit runs the scene to the reference's last frame many times: at most this
+// many steps (fixed, or the adaptive run's accepted steps).
+inline constexpr std::size_t kMaxFitSteps = 10000000;
+
 struct StepPlan {
   std::vector<double> start, size;
   std::size_t count() const { return size.size(); }
@@ -111,8 +115,8 @@ ObservationPlan window_of(const ObservationPlan& observations, std::size_t first
 // The plan a scene's solver takes to `duration`: fixed steps as
 // Simulation::advance takes them, or (adaptive) the steps it accepted, run
 // once with the scene's own weights. Throws std::runtime_error when that run
-// diverges or runs out of step budget.
+// diverges or runs out of step budget, or the plan would pass `max_steps`.
 struct Scene;
-StepPlan plan_steps(const Scene& scene, double duration);
+StepPlan plan_steps(const Scene& scene, double duration, std::size_t max_steps = kMaxFitSteps);
 
 }  // namespace neurocloth
