@@ -84,6 +84,64 @@ TEST_F(CliFit, RecoversTheSpringConstantAndWritesALoadableScene) {
   EXPECT_EQ(sim.code, kOk) << sim.err;
 }
 
+// A small cloth whose material is in words (cloth.fcl), in a light wind.
+std::string words_scene(double elasticity) {
+  return R"({ "name": "words",
+    "cloth": { "grid": { "rows": 5, "cols": 5, "spacing": 0.05, "row_direction": [0, -1, 0],
+                         "col_direction": [1, 0, 0] },
+               "springs": ["structural", "shear", "bend"], "pins": [[0, 0], [0, 4]] },
+    "material": { "rules": ")" +
+         assets_directory() + R"(/materials/cloth.fcl",
+                  "inputs": { "mass": 0.5, "elasticity": )" +
+         std::to_string(elasticity) + R"(, "force": 5 } },
+    "modules": [ { "type": "wind", "velocity": [2, 0, 3] } ],
+    "solver": { "integrator": "network", "dt": 0.0002 } })";
+}
+
+// "What words describe this cloth?": fit finds the elasticity of a recording
+// and says it in the rule base's words; FITTED.json keeps the material in words.
+// (Between 0.2 and 0.3 cloth.fcl's spring constant falls steadily; between
+// 0.45 and 0.575 it is flat, and a recording without contact could not tell
+// those two apart: docs/learning.md.)
+TEST_F(CliFit, FindsTheWordsForAMotion) {
+  const std::string truth = write("truth.json", words_scene(0.3));
+  const std::string rec = (dir_ / "truth.motion").string();
+  ASSERT_EQ(run({"simulate", truth, "--seconds", "0.1", "--record", rec, "--record-fps", "100",
+                 "--out", result_path()})
+                .code,
+            kOk);
+  fs::remove(result_path());
+  fs::rename(rec, dir_ / "moved.motion");  // out of the output folder
+  const std::string start = write("start.json", words_scene(0.2));
+  const Outcome r = run({"fit", start, "--reference", (dir_ / "moved.motion").string(), "--params",
+                         "input.elasticity", "--max-iterations", "40", "--out", fitted()});
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  EXPECT_NE(r.out.find("in words: elasticity 0.3: medium 0.80, small 0.20"), std::string::npos)
+      << r.out;
+  const Scene fitted_scene = load_scene(fitted());
+  ASSERT_TRUE(fitted_scene.fuzzy_material);
+  EXPECT_NEAR(fitted_scene.fuzzy_material->inputs.at("elasticity"), 0.3, 0.02);
+  EXPECT_EQ(fitted_scene.fuzzy_material->inputs.at("mass"), 0.5);
+  EXPECT_FALSE(fs::exists(out_dir() / "FITTED.weights.json"));
+  const json doc = json::parse(read_text(fitted()));
+  EXPECT_NE(doc["fitted"]["in_words"][0].get<std::string>().find("elasticity"), std::string::npos);
+}
+
+TEST_F(CliFit, InputsFitOnlyAMaterialInWordsAndAloneOnIt) {
+  const std::string ref = reference_from("chain", 50.0);
+  expect_input_error({"fit", scene_asset("chain"), "--reference", ref, "--params", "input.mass",
+                      "--out", fitted()},
+                     {"--params", "input.mass", "numbers"});
+  const std::string words = write("words.json", words_scene(0.3));
+  const std::string markers = write("markers.csv", "time,node,x,y,z\n0.01,3,0,0,0\n");
+  expect_input_error(
+      {"fit", words, "--reference", markers, "--params", "input.softness", "--out", fitted()},
+      {"--params", "input.softness", "input.mass, input.elasticity, input.force"});
+  expect_input_error({"fit", words, "--reference", markers, "--params",
+                      "input.mass,spring_constant", "--out", fitted()},
+                     {"--params", "spring_constant", "both set the material"});
+}
+
 // Every bad reference the issue lists: exit 1, one line naming the file, the
 // line and the field, nothing written.
 TEST_F(CliFit, EveryBadMarkerFileIsRefusedNamingFileLineAndField) {

@@ -1,4 +1,5 @@
 #include "fitted_output.h"
+#include "fuzzy_material.h"
 
 #include <gtest/gtest.h>
 
@@ -141,8 +142,14 @@ TEST_F(FittedOutput, AFamilyFitWritesTheMaterialAndNoSideFile) {
 TEST_F(FittedOutput, AMaterialInWordsBecomesNumbersAndKeepsItsMassShares) {
   const Scene original = load_scene(assets_directory() + "/scenes/hanging_fuzzy.json");
   ASSERT_TRUE(original.fuzzy_material);
+  // What FitProblem gives a numeric fit: the scene with its numbers, and the
+  // weights the fit ran on (each node's mass share from the rule base).
   FittedModel model{original, {}, {}};
   model.scene.material.viscosity *= 2;
+  ClothNetwork ran = model.scene.build_network();
+  model.weights = {ran.springs.stiffness, ran.springs.damping, ran.masses.inverse_mass,
+                   ran.masses.friction};
+  model.scene.fuzzy_material.reset();
   write_fit_outputs(original, model, summary(), history(), out());
   const Scene fitted = load_scene(out());
   EXPECT_FALSE(fitted.fuzzy_material);
@@ -155,6 +162,28 @@ TEST_F(FittedOutput, AMaterialInWordsBecomesNumbersAndKeepsItsMassShares) {
   EXPECT_NE(doc["fitted"]["replaces"].get<std::string>().find("material in words"),
             std::string::npos);
   EXPECT_FALSE(doc["material"].contains("rules"));
+}
+
+TEST_F(FittedOutput, FittedInputsKeepTheMaterialInWords) {
+  const Scene original = load_scene(assets_directory() + "/scenes/hanging_fuzzy.json");
+  ASSERT_TRUE(original.fuzzy_material);
+  FittedModel model{original, {}, {}};
+  model.scene.fuzzy_material->inputs["elasticity"] = 0.61;
+  model.scene.material =
+      model.scene.fuzzy_material->rules->derive(model.scene.fuzzy_material->inputs).material;
+  FitSummary s = summary();
+  s.words = {"elasticity 0.61: big 0.58, medium 0.13"};
+  const FittedFiles files = write_fit_outputs(original, model, s, history(), out());
+  EXPECT_TRUE(files.weights.empty());  // the rule base builds the network as fitted
+  const Scene fitted = load_scene(out());
+  ASSERT_TRUE(fitted.fuzzy_material);
+  EXPECT_EQ(fitted.fuzzy_material->inputs, model.scene.fuzzy_material->inputs);
+  EXPECT_EQ(fitted.material.spring_constant, model.scene.material.spring_constant);
+  EXPECT_NE(fitted.material.spring_constant, original.material.spring_constant);
+  EXPECT_EQ(fitted.build_network().masses.inverse_mass,
+            original.build_network().masses.inverse_mass);
+  const auto doc = nlohmann::json::parse(read_text(out()));
+  EXPECT_EQ(doc["fitted"]["in_words"][0], s.words[0]);
 }
 
 TEST_F(FittedOutput, FittedModuleParametersArePatchedIntoTheirModule) {

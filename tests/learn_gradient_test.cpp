@@ -111,6 +111,31 @@ TEST(LearnGradient, EveryWeightPerElement) {
   expect_exact_gradient(p, which, offset);
 }
 
+// A material in words (assets/materials/cloth.fcl) at inputs inside its
+// terms' slopes, where every input moves some output.
+SceneBuilder& in_words(SceneBuilder& b, double mass = 0.55, double elasticity = 0.42,
+                       double force = 5.3) {
+  return b.set("/material",
+               {{"rules", "materials/cloth.fcl"},
+                {"inputs", {{"mass", mass}, {"elasticity", elasticity}, {"force", force}}}});
+}
+
+// Positions -> weights -> the fuzzy inference -> the linguistic inputs.
+TEST(LearnGradient, TheInputsOfAMaterialInWords) {
+  SceneBuilder b(5, 4, 0.05);
+  // Light corner nodes on springs of ~450 N/m: a step of 0.2 ms keeps it stable.
+  in_words(b.hanging().pin_top_row()).solver("network", 0.0002);
+  const Scene scene = b.parse();
+  ASSERT_TRUE(scene.fuzzy_material);
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  ASSERT_EQ(p.size(), 3u);
+  // Inputs are of order 1 (not logarithms): a step of 1e-5 keeps the
+  // differences' rounding below the tolerance.
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
 TEST(LearnGradient, AdaptivePropagationWithItsAcceptedSteps) {
   const Scene scene = hanging_scene(true);
   FitSettings s;
@@ -173,6 +198,20 @@ TEST(LearnGradient, ThroughAPlaneWithTheMaterialsFriction) {
   s.params = {"spring_constant", "viscosity", "node_mass", "friction"};
   FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
   expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, TheInputsThroughAPlaneWithTheRuleBasesFriction) {
+  SceneBuilder b = sliding_drop();
+  // Friction 0.61 in these words: gravity tilted harder so that it slides.
+  in_words(b).solver("network", 0.0002).gravity(Vec3(8.0, -9.81, 0.0));
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+  const Scene scene = b.parse();
+  ASSERT_GT(scene.material.friction, 0.0);
+  ASSERT_GE(sliding_on_floor(scene, 0.2), 8);  // friction acts, so its derivatives count
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
 }
 
 TEST(LearnGradient, ThroughACollidersOwnFrictionAndAirDrag) {

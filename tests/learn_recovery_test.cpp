@@ -86,6 +86,40 @@ TEST(LearnRecovery, QuarterOfTheNodesAsNoisyMarkersWithinFivePercent) {
   EXPECT_NEAR(f.values[1], c, 0.05 * c);
 }
 
+// "What words describe this cloth?": the linguistic inputs of a material in
+// words, from the cloth's own recording. Wind makes the mass count (its force
+// does not scale with the mass, gravity's and the springs' relative pull do),
+// so all three inputs shape the motion.
+SceneBuilder cloth_in_words(double mass, double elasticity, double force) {
+  SceneBuilder b(7, 7, 0.05);
+  b.hanging().pins(nlohmann::json::array({{0, 0}, {0, 6}}));
+  b.set("/material", {{"rules", "materials/cloth.fcl"},
+                      {"inputs", {{"mass", mass}, {"elasticity", elasticity}, {"force", force}}}});
+  b.module({{"type", "wind"}, {"velocity", {2.0, 0.0, 3.0}}});
+  b.solver("network", 0.0002);  // corner nodes of 0.3 g on springs of ~450 N/m
+  return b;
+}
+
+TEST(LearnRecovery, TheWordsOfACloth) {
+  const double mass = 0.5, elasticity = 0.45, force = 5.0;
+  const Scene truth = cloth_in_words(mass, elasticity, force).parse();
+  const ReferenceMotion ref = record(truth, 0.3, 25);
+  const Scene start = cloth_in_words(0.3, 0.3, 3.5).parse();
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem problem(start, ref, s);
+  const Fit f = fit(problem, problem.initial(), 100);
+  std::printf("  mass %.6g (true %g), elasticity %.6g (%g), force %.6g (%g)\n", f.values[0], mass,
+              f.values[1], elasticity, f.values[2], force);
+  for (const std::string& w : problem.inputs_in_words(f.result.best_theta))
+    std::printf("  %s\n", w.c_str());
+  // Within 2% of each input's range (cloth.fcl: mass 0.02..1.5, elasticity
+  // 0..1, force 0..10).
+  EXPECT_NEAR(f.values[0], mass, 0.02 * 1.48);
+  EXPECT_NEAR(f.values[1], elasticity, 0.02 * 1.0);
+  EXPECT_NEAR(f.values[2], force, 0.02 * 10.0);
+}
+
 // The vertical structural springs between rows 3 and 5 of a cloth hanging
 // from its top row (the ones that carry its weight there) are four times
 // stiffer than the rest; a per-element fit from uniform weights finds them.

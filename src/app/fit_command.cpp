@@ -292,6 +292,9 @@ int run_fit(const FitOptions& o) {
     if (!uncertainty.computed && uncertainty.skipped.empty()) uncertainty.skipped = "not estimated";
   }
   print_uncertainty(uncertainty, problem);
+  const std::vector<std::string> words = problem.inputs_in_words(best);
+  for (const std::string& w : words)
+    std::printf("in words: %s\n", w.c_str());
 
   FitSummary summary;
   summary.reference = o.reference;
@@ -302,6 +305,7 @@ int run_fit(const FitOptions& o) {
   summary.loss = result.best_loss;
   summary.rms_m = rms_of(result.best_loss, best);
   summary.parameters = summary_parameters(uncertainty, columns, best);
+  summary.words = words;
   summary.uncertainty =
       uncertainty.computed
           ? "Gauss-Newton: covariance = s^2 H^-1 with H by central differences of the gradient"

@@ -97,6 +97,9 @@ int run_fit_online(const FitOptions& o) {
     summary.parameters.push_back(p);
   }
   summary.uncertainty = "not estimated: an online fit ends wherever the reference ends";
+  summary.words = problem.inputs_in_words(online.theta());
+  for (const std::string& w : summary.words)
+    std::printf("in words: %s\n", w.c_str());
   const FittedModel model{problem.fitted_scene(online.theta()),
                           problem.element_weights(online.theta()),
                           problem.element_rest_lengths(online.theta())};

@@ -75,8 +75,9 @@ FuzzyMaterial FuzzyMaterial::load(const std::string& fcl_path) {
   return FuzzyMaterial(fuzzy::read_fcl(fcl_path), fcl_path);
 }
 
-DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& inputs,
-                                      const std::string& where, const std::string& field) const {
+std::vector<double> FuzzyMaterial::input_vector(const std::map<std::string, double>& inputs,
+                                                const std::string& where,
+                                                const std::string& field) const {
   const std::string file = where.empty() ? source_ : where;
   std::vector<double> x(system_.inputs.size());
   for (const auto& [name, value] : inputs) {
@@ -95,15 +96,45 @@ DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& input
   for (const auto& v : system_.inputs)
     if (!inputs.count(v.name))
       throw InputError(file, field + "." + v.name, "missing: the rule base needs every input");
+  return x;
+}
 
+Material FuzzyMaterial::material_from(const std::vector<double>& y) const {
+  Material m;
+  m.spring_constant = y[outputs_[0]];
+  m.node_mass = y[outputs_[1]];
+  m.viscosity = y[outputs_[2]];
+  m.friction = y[outputs_[3]];
+  return m;
+}
+
+DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& inputs,
+                                      const std::string& where, const std::string& field) const {
   DerivedMaterial d;
-  d.report = fuzzy::infer(system_, x);
-  const auto& y = d.report.outputs;
-  d.material.spring_constant = y[outputs_[0]];
-  d.material.node_mass = y[outputs_[1]];
-  d.material.viscosity = y[outputs_[2]];
-  d.material.friction = y[outputs_[3]];
+  d.report = fuzzy::infer(system_, input_vector(inputs, where, field));
+  d.material = material_from(d.report.outputs);
   return d;
+}
+
+MaterialSensitivity FuzzyMaterial::sensitivity(const std::map<std::string, double>& inputs,
+                                               const std::string& where,
+                                               const std::string& field) const {
+  fuzzy::InferenceGradient g = fuzzy::infer_gradient(system_, input_vector(inputs, where, field));
+  MaterialSensitivity s;
+  s.derived.report = std::move(g.report);
+  s.derived.material = material_from(s.derived.report.outputs);
+  for (Eigen::Index j = 0; j < g.d_inputs.cols(); ++j) {
+    std::vector<double> dy(static_cast<std::size_t>(g.d_inputs.rows()));
+    for (Eigen::Index o = 0; o < g.d_inputs.rows(); ++o)
+      dy[static_cast<std::size_t>(o)] = g.d_inputs(o, j);
+    Material d = material_from(dy);
+    // The derived material's shear and bend springs follow its spring constant.
+    const Material& m = s.derived.material;
+    d.shear_constant = m.shear_constant < 0 ? d.spring_constant : d.shear_constant;
+    d.bend_constant = m.bend_constant < 0 ? d.spring_constant : d.bend_constant;
+    s.d_inputs.push_back(d);
+  }
+  return s;
 }
 
 }  // namespace neurocloth

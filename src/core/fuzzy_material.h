@@ -31,6 +31,16 @@ struct DerivedMaterial {
   fuzzy::InferenceReport report;  // rule activations, clamped inputs, defaulted outputs
 };
 
+// How a derived material moves with each input: the material and, per input
+// (in the rule base's order), the derivative of each constant the network
+// takes. shear_constant and bend_constant hold the derivatives of shear() and
+// bend() (what the shear and bend springs get), so they are never "follow the
+// spring constant" markers here.
+struct MaterialSensitivity {
+  DerivedMaterial derived;
+  std::vector<Material> d_inputs;
+};
+
 class FuzzyMaterial {
  public:
   // The outputs every material rule base must define.
@@ -50,10 +60,20 @@ class FuzzyMaterial {
   DerivedMaterial derive(const std::map<std::string, double>& inputs, const std::string& where = "",
                          const std::string& field = "inputs") const;
 
+  // derive() with the exact derivatives of the material (fuzzy::infer_gradient).
+  MaterialSensitivity sensitivity(const std::map<std::string, double>& inputs,
+                                  const std::string& where = "",
+                                  const std::string& field = "inputs") const;
+
   const fuzzy::FuzzySystem& system() const { return system_; }
   const std::string& source() const { return source_; }
 
  private:
+  std::vector<double> input_vector(const std::map<std::string, double>& inputs,
+                                   const std::string& where, const std::string& field) const;
+  // The material the outputs y give (inference values or their derivatives).
+  Material material_from(const std::vector<double>& y) const;
+
   fuzzy::FuzzySystem system_;
   std::string source_;
   int outputs_[4];

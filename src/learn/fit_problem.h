@@ -23,7 +23,8 @@ namespace neurocloth {
 struct FitSettings {
   // Parameter names (docs/learning.md): spring_constant, shear_constant,
   // bend_constant, viscosity, node_mass, rest_length, friction, and module
-  // parameters (air_drag.rate, wind.velocity.x, wind.drag, plane.friction, ...).
+  // parameters (air_drag.rate, wind.velocity.x, wind.drag, plane.friction, ...),
+  // and, for a material in words, its rule base's inputs (input.mass, ...).
   std::vector<std::string> params = {"spring_constant", "viscosity"};
   // One unknown per spring (stiffness, damping, rest length) or node (mass)
   // instead of one per family. Module parameters stay one number each.
@@ -100,8 +101,12 @@ class FitProblem {
   // modules (the material becomes numeric). Per-element blocks are not in it:
   // see element_weights.
   Scene fitted_scene(const Eigen::VectorXd& theta) const;
-  // Per-element weights at theta (network order), for the side file; empty
-  // vectors for what was not fitted per element.
+  // A fit of a material's inputs (input.NAME): each fitted input at theta in
+  // the rule base's words, "elasticity 0.712: big 0.80, medium 0.20"; empty
+  // for other fits.
+  std::vector<std::string> inputs_in_words(const Eigen::VectorXd& theta) const;
+  // Every weight of the network the fit runs at theta (network order): the
+  // side file holds them when fitted_scene's material alone does not build them.
   MaterialWeights element_weights(const Eigen::VectorXd& theta) const;
   std::vector<double> element_rest_lengths(const Eigen::VectorXd& theta) const;
 

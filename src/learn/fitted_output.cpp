@@ -64,11 +64,10 @@ void patch_module(nlohmann::ordered_json& out, const ModuleSpec& was, const Modu
       now);
 }
 
-// The scene as FITTED.json's loader will build it: a numeric material, and
-// neither a rule base's mass shares nor side-file weights.
+// The scene as FITTED.json's loader will build it: its material (numbers, or
+// words when the inputs were fitted) without side-file weights.
 ClothNetwork network_from_material(const FittedModel& model) {
   Scene s = model.scene;
-  s.fuzzy_material.reset();
   s.element_weights.reset();
   return s.build_network();
 }
@@ -138,7 +137,14 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
   nlohmann::ordered_json doc =
       nlohmann::ordered_json::parse(read_text_file(original.path, "scene file", kMaxSceneBytes));
   const json was_material = json::parse(doc["material"].dump());
-  doc["material"] = material_json(model.scene.material);
+  if (const auto& words = model.scene.fuzzy_material) {
+    nlohmann::ordered_json inputs;
+    for (const auto& [name, value] : words->inputs)
+      inputs[name] = value;
+    doc["material"] = {{"rules", rebased_path("", words->rules_path, out)}, {"inputs", inputs}};
+  } else {
+    doc["material"] = material_json(model.scene.material);
+  }
   if (doc.contains("cloth") && doc["cloth"].contains("mesh")) {
     nlohmann::ordered_json& obj = doc["cloth"]["mesh"]["obj"];
     obj = rebased_path(original.path, obj.get<std::string>(), out);
@@ -170,6 +176,7 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
                        "): " + was_material.dump();
   else
     note["replaces"] = was_material;
+  if (!summary.words.empty()) note["in_words"] = summary.words;
   json params = json::array();
   for (const ParameterUncertainty& p : summary.parameters)
     params.push_back(parameter_json(p));

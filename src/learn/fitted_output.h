@@ -1,7 +1,9 @@
 #pragma once
 // What `fit` writes (docs/learning.md, "Fitting"):
 //  FITTED.json          the original scene file with the fitted values: a numeric
-//                       material in place of the old one (numbers or words),
+//                       material in place of the old one (numbers or words) or,
+//                       when the fit was of a material's inputs, the material in
+//                       words at the fitted inputs,
 //                       module parameters patched, paths rewritten to resolve
 //                       from FITTED.json's folder, a "fitted" note (source,
 //                       reference, loss, RMS, each parameter with its uncertainty)
@@ -46,6 +48,9 @@ struct FitSummary {
   // uncertainty; sd and relative_sd NaN when it was not estimated.
   std::vector<ParameterUncertainty> parameters;
   std::string uncertainty;  // how it was estimated, or why it was skipped
+  // A fit of a material's inputs: each fitted input in the rule base's words
+  // ("elasticity 0.712: big 0.80, medium 0.20").
+  std::vector<std::string> words;
 };
 
 // One row of FITTED.loss.csv.
