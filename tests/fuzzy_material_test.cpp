@@ -9,6 +9,7 @@
 
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/fcl_writer.h"
+#include "fuzzy/term_degrees.h"
 #include "input_error.h"
 #include "relaxation.h"
 #include "scene_builder.h"
@@ -52,6 +53,26 @@ TEST(FuzzyMaterial, ShippedRuleBaseHasThePapersDomainsAndRules) {
 }
 
 // The shipped file survives write -> read: same text again, same outputs.
+// What a fit of the inputs prints: the terms a value belongs to, by degree.
+TEST(FuzzyMaterial, AnInputIsSaidInTheRuleBasesWords) {
+  const FuzzyMaterial m = FuzzyMaterial::load(assets_directory() + "/materials/cloth.fcl");
+  const fuzzy::LinguisticVariable& e = m.system().inputs[1];
+  ASSERT_EQ(e.name, "elasticity");
+  EXPECT_EQ(fuzzy::in_words(e, 0.3), "elasticity 0.3: medium 0.80, small 0.20");
+  EXPECT_EQ(fuzzy::in_words(e, 0.05), "elasticity 0.05: small 1.00");
+  const auto degrees = fuzzy::term_degrees(e, 0.5);  // medium 0.5, big (0.5-0.35)/0.45
+  ASSERT_EQ(degrees.size(), 2u);
+  EXPECT_EQ(degrees[0].term, "medium");
+  EXPECT_DOUBLE_EQ(degrees[0].degree, 0.5);
+  EXPECT_EQ(degrees[1].term, "big");
+  EXPECT_DOUBLE_EQ(degrees[1].degree, 0.15 / 0.45);
+  // Outside its range a value is read where inference reads it: clamped.
+  EXPECT_EQ(fuzzy::in_words(e, 7.0), "elasticity 7: big 1.00");
+  fuzzy::LinguisticVariable gap = e;
+  gap.terms.resize(1);  // small only: 0.5 belongs to no term
+  EXPECT_EQ(fuzzy::in_words(gap, 0.5), "elasticity 0.5: no term");
+}
+
 TEST(FuzzyMaterial, ShippedRuleBaseRoundTripsThroughTheWriter) {
   const fuzzy::FuzzySystem s = fuzzy::read_fcl(assets_directory() + "/materials/cloth.fcl");
   const std::string text = fuzzy::write_fcl(s);

@@ -340,7 +340,7 @@ TEST(LiveScene, AFittedMaterialRampsInAndReplacesTheUsersViscosity) {
   Material fitted = scene.material;
   fitted.spring_constant = 321;
   fitted.viscosity = 0.07;
-  EXPECT_EQ(live.apply(ApplyFit{fitted, {}}), "");
+  EXPECT_EQ(live.apply(ApplyFit{fitted, {}, {}}), "");
   EXPECT_TRUE(live.simulation().ramping());
   for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
     live.simulation().advance(0.01);  // the ramp takes 64 accepted steps
@@ -364,21 +364,47 @@ TEST(LiveScene, AFittedMaterialRampsInAndReplacesTheUsersViscosity) {
             target_scene.build_network().springs.stiffness);
 }
 
+// A fit of the inputs keeps the material in words: the inputs move, and the
+// rule base gives the weights, as the sliders would.
+TEST(LiveScene, FittedInputsMoveTheSlidersNotTheNumbers) {
+  const Scene scene = test::asset_scene("hanging_fuzzy");
+  LiveScene live(scene);
+  const ParameterId elasticity = test::parameter(scene, "input.elasticity");
+  EXPECT_EQ(live.apply(ApplyFit{scene.material, {}, {{elasticity, 0.6}}}), "");
+  for (int frame = 0; frame < 100 && live.simulation().ramping(); ++frame)
+    live.simulation().advance(0.01);
+  std::map<std::string, double> inputs = scene.fuzzy_material->inputs;
+  inputs["elasticity"] = 0.6;
+  Scene target = scene;
+  target.material = scene.fuzzy_material->rules->derive(inputs).material;
+  EXPECT_EQ(live.simulation().network().springs.stiffness,
+            target.build_network().springs.stiffness);
+  EXPECT_NE(target.material.spring_constant, scene.material.spring_constant);
+  SimulationStatus status;
+  live.describe(status);
+  const std::pair<std::string, double> shown("elasticity", 0.6);
+  EXPECT_NE(std::find(status.material_inputs.begin(), status.material_inputs.end(), shown),
+            status.material_inputs.end());
+  // An input the scene does not have is refused, and nothing changes.
+  EXPECT_TRUE(contains(live.apply(ApplyFit{scene.material, {}, {{ParameterId::input(9), 0.5}}}),
+                       "no input"));
+}
+
 TEST(LiveScene, AFitIsRefusedWholeWhenAnyPartCannotBeTaken) {
   LiveScene flag(test::asset_scene("flag"));
   const std::vector<double> stiffness = flag.simulation().network().springs.stiffness;
   Material bad = flag.scene().material;
   bad.node_mass = std::nan("");
-  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}}), "not finite"));
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}, {}}), "not finite"));
   bad.node_mass = -1;
-  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}}), "ApplyFit: the fitted material has"));
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{bad, {}, {}}), "ApplyFit: the fitted material has"));
 
   Material good = flag.scene().material;
   good.spring_constant *= 2;
   const ParameterId wind_x = test::parameter(flag.scene(), "wind.velocity.x");
-  EXPECT_TRUE(contains(flag.apply(ApplyFit{good, {{wind_x, std::nan("")}}}), "not finite"));
+  EXPECT_TRUE(contains(flag.apply(ApplyFit{good, {{wind_x, std::nan("")}}, {}}), "not finite"));
   EXPECT_TRUE(contains(
-      flag.apply(ApplyFit{good, {{ParameterId::module(7, ModuleParameter::rate, -1), 1.0}}}),
+      flag.apply(ApplyFit{good, {{ParameterId::module(7, ModuleParameter::rate, -1), 1.0}}, {}}),
       "no module parameter"));
   EXPECT_FALSE(flag.simulation().ramping());
   EXPECT_EQ(flag.simulation().network().springs.stiffness, stiffness);
@@ -386,12 +412,12 @@ TEST(LiveScene, AFitIsRefusedWholeWhenAnyPartCannotBeTaken) {
   // A collider's friction is fitted, but the running cloth cannot take it.
   LiveScene table(test::asset_scene("table_drape"));
   const ParameterId box_friction = ParameterId::module(0, ModuleParameter::friction, -1);
-  EXPECT_TRUE(contains(table.apply(ApplyFit{table.scene().material, {{box_friction, 0.3}}}),
+  EXPECT_TRUE(contains(table.apply(ApplyFit{table.scene().material, {{box_friction, 0.3}}, {}}),
                        "cannot change while the cloth runs"));
   EXPECT_FALSE(table.simulation().ramping());
 
   // A fitted wind reaches the module and the status.
-  EXPECT_EQ(flag.apply(ApplyFit{good, {{wind_x, -3.0}}}), "");
+  EXPECT_EQ(flag.apply(ApplyFit{good, {{wind_x, -3.0}}, {}}), "");
   SimulationStatus s;
   flag.describe(s);
   EXPECT_EQ(*s.wind, Vec3(-3, 0, 0.8));

@@ -45,6 +45,7 @@ FitOutcome fit_outcome(const FitProblem& problem, const Scene& scene,
                        const Eigen::VectorXd& theta) {
   FitOutcome out;
   out.command.material = problem.fitted_scene(theta).material;
+  out.words = problem.inputs_in_words(theta);
   const ParameterNames names = parameter_names(scene);
   for (const FitBlock& b : problem.blocks()) {
     if (material_block(b.name) && b.count == 1) continue;  // in the material
@@ -57,7 +58,8 @@ FitOutcome fit_outcome(const FitProblem& problem, const Scene& scene,
       continue;
     }
     if (const std::optional<ParameterId> id = parse_parameter(b.name, names))
-      out.command.module_parameters.push_back({*id, block_value(b, theta)});
+      (id->kind == ParameterId::Kind::input ? out.command.inputs : out.command.module_parameters)
+          .push_back({*id, block_value(b, theta)});
     else
       out.not_applied.push_back(b.name + ": not a live parameter");
   }

@@ -47,6 +47,8 @@ struct FitOutcome {
   ApplyFit command;  // the fitted material and the fitted force-module parameters
   // Fitted blocks the live cloth cannot take, with why ("rest_length: ...").
   std::vector<std::string> not_applied;
+  // A fit of a material's inputs, in the rule base's words (fit_problem.h).
+  std::vector<std::string> words;
 };
 
 struct FitProgress {

@@ -423,6 +423,21 @@ std::string LiveScene::on(const ApplyFit& c) {
              " cannot change while the cloth runs (only force modules take live changes)";
     modules.push_back({k, &p});
   }
+  // Fitted inputs: the rule base gives the material, as a slider's would.
+  std::map<std::string, double> inputs = inputs_;
+  for (const auto& [id, value] : c.inputs) {
+    const bool known = id.kind == ParameterId::Kind::input && id.index >= 0 &&
+                       static_cast<std::size_t>(id.index) < run_->names.inputs.size();
+    if (!known || !run_->rules())
+      return "ApplyFit: no input " + to_string(id, run_->names) + " here";
+    if (!std::isfinite(value))
+      return "ApplyFit: " + to_string(id, run_->names) + " = " + number(value) + " is not finite";
+    inputs[run_->names.inputs[static_cast<std::size_t>(id.index)]] = value;
+  }
+  const Material target =
+      c.inputs.empty() ? m : run_->rules()->derive(inputs, "the fit", "input").material;
+  if (const auto why = material_outside_limits(target))
+    return "ApplyFit: the fitted inputs give " + *why;
   Simulation& sim = run_->sim;
   for (const auto& [k, p] : modules)
     if (!sim.set_module_parameter(static_cast<std::size_t>(k), p->first, p->second))
@@ -432,7 +447,12 @@ std::string LiveScene::on(const ApplyFit& c) {
         p->first.parameter == ModuleParameter::velocity)
       (*wind_)[p->first.axis] = p->second;
   if (!modules.empty()) sim.rebase_divergence_check();  // the energy budget was for the old forces
-  fitted_ = m;
+  if (c.inputs.empty()) {
+    fitted_ = m;
+  } else {
+    fitted_.reset();  // the material stays in words, at the fitted inputs
+    inputs_ = std::move(inputs);
+  }
   viscosity_.reset();  // the fit's own values, not the user's, from now on
   friction_.reset();
   sim.ramp_to_material(target_material());

@@ -89,6 +89,9 @@ struct ApplyFit {
   Material material;
   // Module ids as the running scene's ParameterNames index them.
   std::vector<std::pair<ParameterId, double>> module_parameters;
+  // A fit of a material's inputs (input.NAME ids): the rule base derives the
+  // material from them, and `material` is not applied.
+  std::vector<std::pair<ParameterId, double>> inputs;
 };
 
 using SimCommand =

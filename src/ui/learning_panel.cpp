@@ -61,7 +61,8 @@ void fit_settings(LearningSession& s, bool running) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "as fit --params: spring_constant, shear_constant, bend_constant, viscosity,\n"
-        "node_mass, friction, and module parameters (air_drag.rate, wind.drag, ...)");
+        "node_mass, friction, module parameters (air_drag.rate, wind.drag, ...),\n"
+        "or a material in words' inputs (input.mass, input.elasticity, ...)");
   ImGui::Checkbox("online adaptation", &set.online);
   if (set.online) {
     ImGui::InputInt("window, steps", &set.window);

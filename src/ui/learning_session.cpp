@@ -121,6 +121,11 @@ void LearningSession::post_outcome(const FitOutcome& outcome, const CommandSink&
                 "viscosity %.4g, friction %.4g",
                 m.spring_constant, m.shear(), m.bend(), m.node_mass, m.viscosity, m.friction);
   applied_ = line;
+  if (!outcome.words.empty()) {  // a material in words: its inputs, not numbers
+    applied_.clear();
+    for (const std::string& w : outcome.words)
+      applied_ += (applied_.empty() ? "" : "; ") + w;
+  }
   if (const std::size_t n = outcome.command.module_parameters.size(); n > 0)
     applied_ += "; " + std::to_string(n) + " module parameter(s)";
   for (const std::string& n : outcome.not_applied)
