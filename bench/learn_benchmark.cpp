@@ -6,9 +6,12 @@
 // gradient within 3x the forward run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "fit_problem.h"
+#include "optimizer.h"
 #include "scene.h"
 
 namespace neurocloth {
@@ -58,9 +61,86 @@ void BM_FitGradient(benchmark::State& state) {
   state.counters["tape_MB"] = double(p.peak_tape_bytes()) / (1 << 20);
 }
 
+// A material in words: one gradient of the three linguistic inputs (the
+// fuzzy inference's derivatives chained onto every weight's gradient) against
+// one of the spring constant and viscosity, on the hanging_fuzzy scene's cloth
+// resized to 32 x 32 (its rule base's material, its adaptive propagation), over 0.05 s.
+void BM_FitWordsGradient(benchmark::State& state) {
+  Case c;
+  c.scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging_fuzzy.json"), 32);
+  Simulation sim = c.scene.make_simulation();
+  for (int k = 1; k <= 8; ++k) {
+    sim.advance(k * 0.05 / 8 - sim.time());
+    ReferenceFrame f;
+    f.time = sim.time();
+    for (std::size_t i = 0; i < sim.state().size(); ++i) {
+      f.nodes.push_back(static_cast<std::int32_t>(i));
+      f.positions.push_back(sim.state().position(i) + Vec3(0, 1e-3, 0));
+    }
+    c.reference.frames.push_back(f);
+  }
+  FitSettings s;
+  if (state.range(0)) s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(c.scene, c.reference, s);
+  const Eigen::VectorXd theta = p.initial();
+  Eigen::VectorXd g;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(p.loss(theta, &g));
+}
+
+// "What words describe this cloth?", the whole fit: tests/learn_recovery_test's
+// TheWordsOfACloth (a 7 x 7 cloth in words in a wind, 0.3 s of its own
+// recording every 5 ms, the three inputs from (0.3, 0.3, 3.5) back to
+// (0.5, 0.45, 5)), L-BFGS to its gradient tolerance.
+void BM_FitWordsWholeFit(benchmark::State& state) {
+  const auto scene = [](double mass, double elasticity, double force) {
+    return parse_scene(R"({ "name": "words",
+      "cloth": { "grid": { "rows": 7, "cols": 7, "spacing": 0.05, "row_direction": [0, -1, 0],
+                           "col_direction": [1, 0, 0] },
+                 "springs": ["structural", "shear", "bend"], "pins": [[0, 0], [0, 6]] },
+      "material": { "rules": "materials/cloth.fcl", "inputs": { "mass": )" +
+                           std::to_string(mass) + R"(, "elasticity": )" +
+                           std::to_string(elasticity) + R"(, "force": )" + std::to_string(force) +
+                           R"( } },
+      "modules": [ { "type": "wind", "velocity": [2, 0, 3] } ],
+      "solver": { "integrator": "network", "dt": 0.0002 } })",
+                       std::string(NEUROCLOTH_SCENES) + "/words.json");
+  };
+  Simulation truth = scene(0.5, 0.45, 5).make_simulation();
+  ReferenceMotion ref;
+  for (int k = 1; k <= 60; ++k) {
+    truth.advance(k * 0.005 - truth.time());
+    ReferenceFrame f;
+    f.time = truth.time();
+    for (std::size_t i = 0; i < truth.state().size(); ++i) {
+      f.nodes.push_back(static_cast<std::int32_t>(i));
+      f.positions.push_back(truth.state().position(i));
+    }
+    ref.frames.push_back(f);
+  }
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(scene(0.3, 0.3, 3.5), ref, s);
+  OptimizerOptions o;
+  o.max_iterations = 200;
+  double worst = 0;
+  for (auto _ : state) {
+    const OptimizerResult r =
+        minimize([&](const Eigen::VectorXd& theta, Eigen::VectorXd* g) { return p.loss(theta, g); },
+                 p.initial(), o);
+    const Eigen::VectorXd v = p.values(r.best_theta);
+    worst = std::max({std::abs(v[0] - 0.5) / 1.48, std::abs(v[1] - 0.45), std::abs(v[2] - 5) / 10});
+    state.counters["evaluations"] = r.evaluations;
+  }
+  state.counters["worst_error_of_range"] = worst;
+}
+
 BENCHMARK(BM_FitForward)->Args({32, 500})->Unit(benchmark::kMillisecond);
 // The whole tape in memory, then a budget that forces checkpointed segments.
 BENCHMARK(BM_FitGradient)->Args({32, 500, 0})->Args({32, 500, 4})->Unit(benchmark::kMillisecond);
+// 0: spring constant and viscosity; 1: the three inputs.
+BENCHMARK(BM_FitWordsGradient)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FitWordsWholeFit)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace neurocloth
