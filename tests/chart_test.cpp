@@ -10,6 +10,7 @@
 #include <memory>
 #include <set>
 
+#include "release_chart_caches.h"
 #include "trade_chart.h"
 #include "tradeoff/pareto_front.h"
 
@@ -206,14 +207,6 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   const auto [x, y] = chart.to_pixel(0.3, 0.001);
   EXPECT_TRUE(pic.near(x, y, method_colour("rk4"), 0, 1));
 }
-
-// After the last chart: cairo's and fontconfig's caches go, so that the
-// sanitizer build sees no memory left behind.
-class ReleaseChartCaches : public ::testing::Environment {
- public:
-  void TearDown() override { release_chart_caches(); }
-};
-const auto* const kReleaseCaches = ::testing::AddGlobalTestEnvironment(new ReleaseChartCaches);
 
 }  // namespace
 }  // namespace neurocloth

@@ -1,5 +1,4 @@
 #include "fitted_output.h"
-#include "fuzzy_material.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +8,10 @@
 
 #include "asset_paths.h"
 #include "element_weights.h"
+#include "fuzzy_material.h"
 #include "input_error.h"
 #include "loglog_chart.h"
+#include "release_chart_caches.h"
 
 namespace neurocloth {
 namespace {
@@ -219,14 +220,6 @@ TEST_F(FittedOutput, RebasedPathsResolveFromTheNewFolder) {
   EXPECT_EQ(fitted_file_names("a/b/F.json").png, "a/b/F.loss.png");
   EXPECT_EQ(fitted_file_names("F").weights, "F.weights.json");
 }
-
-// After the last chart (the loss curves): cairo's and fontconfig's caches go,
-// so that the sanitizer build sees no memory left behind.
-class ReleaseChartCaches : public ::testing::Environment {
- public:
-  void TearDown() override { release_chart_caches(); }
-};
-const auto* const kReleaseCaches = ::testing::AddGlobalTestEnvironment(new ReleaseChartCaches);
 
 }  // namespace
 }  // namespace neurocloth
