@@ -200,5 +200,25 @@ TEST_F(CliRecord, AnOutputOverTheSceneOrOntoAFolderIsRefused) {
   }
 }
 
+// RESULT.json over the scene (simulate, relax) used to replace the scene; two
+// outputs spelled differently for one file used to pass.
+TEST_F(CliRecord, AResultOverTheSceneOrTwoSpellingsOfOneOutputAreRefused) {
+  const std::string scene = write("scene.json", read_text(scene_asset("chain")));
+  for (const char* command : {"simulate", "relax"}) {
+    std::vector<std::string> args = {command, scene, "--out", (dir_ / "." / "scene.json").string()};
+    if (std::string(command) == "simulate") args.insert(args.end(), {"--seconds", "0.05"});
+    const Outcome r = run(args);
+    EXPECT_EQ(r.code, kInputError) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("reads"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(scene), read_text(scene_asset("chain")));
+  }
+  const Outcome r = run({"simulate", scene, "--seconds", "0.05", "--out", result_path(), "--record",
+                         out("a.pc2"), "--export-pc2", (out_dir() / "." / "a.pc2").string()});
+  EXPECT_EQ(r.code, kInputError) << r.err;
+  EXPECT_NE(r.err.find("two outputs"), std::string::npos) << r.err;
+  EXPECT_TRUE(files_in_out_dir().empty());
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test

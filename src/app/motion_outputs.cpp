@@ -77,7 +77,7 @@ MotionOutputs::MotionOutputs(const SimulateOptions& o, const Scene& scene) : sce
                                           mesh_path_};
   for (std::size_t i = 0; i < paths.size(); ++i)
     for (std::size_t j = i + 1; j < paths.size(); ++j)
-      if (!paths[i].empty() && paths[i] == paths[j])
+      if (!paths[i].empty() && !paths[j].empty() && same_file(paths[i], paths[j]))
         throw InputError("command line", option,
                          "'" + paths[i] + "' is named for two outputs; give each its own file");
   const std::vector<std::string> inputs = input_files(scene);

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "motion_outputs.h"
 #include "relaxation.h"
 #include "result_json.h"
 #include "scene.h"
@@ -10,6 +11,7 @@ namespace neurocloth {
 
 int run_relax(const RelaxOptions& o) {
   const Scene scene = load_scene(o.scene);
+  check_output_path("--out", o.out, input_files(scene));
   const ClothNetwork net = scene.build_network();
   ClothState state = scene.initial_state();
   const auto start = std::chrono::steady_clock::now();

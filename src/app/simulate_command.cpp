@@ -94,6 +94,7 @@ int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
     throw InputError("command line", "--seconds", "must be a finite number >= 0");
   Scene scene = load_scene(o.scene);
+  check_output_path("--out", o.out, input_files(scene));
   std::optional<AccuracyPick> accuracy;
   if (o.accuracy) accuracy = pick_for_accuracy(o, scene);
   if (o.integrator) {
