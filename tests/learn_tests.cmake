@@ -1,9 +1,10 @@
 # The learning stage (label learn): reference motions (recordings, markers) and
 # their exports, the adjoint's gradient, the optimiser, the uncertainty, the
-# fitted scene and its side file, fits.
+# fitted scene and its side file, fits, rule bases tuned to examples.
 add_executable(learn_tests motion_recording_test.cpp marker_csv_test.cpp pc2_writer_test.cpp
   learn_gradient_test.cpp optimizer_test.cpp uncertainty_test.cpp fitted_output_test.cpp
-  element_weights_test.cpp learn_recovery_test.cpp learn_online_test.cpp reference_pose_test.cpp)
+  element_weights_test.cpp learn_recovery_test.cpp learn_online_test.cpp reference_pose_test.cpp
+  rule_examples_test.cpp rule_tuning_test.cpp)
 target_link_libraries(learn_tests PRIVATE neurocloth_learn neurocloth_core
   nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_options(learn_tests PRIVATE $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)

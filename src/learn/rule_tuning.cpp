@@ -52,13 +52,13 @@ Reach reach(const FuzzySystem& s, const RuleExamples& e, const RuleTuningOptions
       inputs.insert(terms.begin(), terms.end());
     }
   Reach r;
-  if (o.membership) {
+  if (o.input_terms)
     for (const auto& [v, t] : inputs)
       if (!tunable_indices(s.inputs[v].terms[t].function).empty()) r.shapes.push_back({true, v, t});
+  if (o.output_sets)
     for (const auto& [v, t] : sets)
       if (!tunable_indices(s.outputs[v].terms[t].function).empty())
         r.shapes.push_back({false, v, t});
-  }
   if (o.consequents) r.consequent.assign(consequent.begin(), consequent.end());
   return r;
 }
@@ -77,6 +77,19 @@ std::string shape_text(const fuzzy::MembershipFunction& f) {
     std::snprintf(buf, sizeof buf, " %.6g", p);
     out += buf;
   }
+  return out;
+}
+
+// The --what that `o` stands for, for messages.
+std::string what(const RuleTuningOptions& o) {
+  std::string out;
+  auto add = [&](bool on, const char* name) {
+    if (on) out += (out.empty() ? "" : ",") + std::string(name);
+  };
+  add(o.input_terms && o.output_sets, "mf");
+  add(o.input_terms && !o.output_sets, "inputs");
+  add(!o.input_terms && o.output_sets, "sets");
+  add(o.consequents, "consequents");
   return out;
 }
 
@@ -125,10 +138,7 @@ RuleTuning::RuleTuning(const FuzzySystem& system, const RuleExamples& examples,
   const std::string outputs = names_of(system, examples);
   if (shapes_.empty() && consequents_.empty())
     throw InputError(examples.path, "header",
-                     "nothing to tune for " + outputs + " with --what " +
-                         (options.membership && options.consequents ? "mf,consequents"
-                          : options.membership                      ? "mf"
-                                                                    : "consequents") +
+                     "nothing to tune for " + outputs + " with --what " + what(options) +
                          ": no rule reaches them through a term that setting tunes");
   // One residual per tuned number at least; a Sugeno output's least squares
   // needs one example per constant of its own.

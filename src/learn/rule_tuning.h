@@ -33,7 +33,8 @@
 namespace neurocloth {
 
 struct RuleTuningOptions {
-  bool membership = true;   // input terms and Mamdani output sets (--what mf)
+  bool input_terms = true;  // the inputs' membership functions (--what mf or inputs)
+  bool output_sets = true;  // Mamdani output sets (--what mf or sets)
   bool consequents = true;  // Takagi-Sugeno consequents (--what consequents)
   double min_width = 0.02;  // a tuned set's narrowest span, as a fraction of its range
   // The search's budgets and tolerances (method and lbfgs_memory are ignored).
