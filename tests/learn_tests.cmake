@@ -12,8 +12,8 @@ target_compile_definitions(learn_tests PRIVATE NEUROCLOTH_TEST_TMP="${CMAKE_CURR
   NEUROCLOTH_TEST_DATA="${CMAKE_CURRENT_SOURCE_DIR}/data")
 gtest_discover_tests(learn_tests PROPERTIES LABELS learn DISCOVERY_TIMEOUT 60)
 
-# simulate --record and --export-pc2, and fit, run as a user would.
-add_executable(cli_record_tests cli_record_test.cpp cli_fit_test.cpp)
+# simulate --record and --export-pc2, fit and tune-rules, run as a user would.
+add_executable(cli_record_tests cli_record_test.cpp cli_fit_test.cpp cli_tune_rules_test.cpp)
 target_link_libraries(cli_record_tests PRIVATE neurocloth_learn neurocloth_core
   nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_definitions(cli_record_tests PRIVATE NEUROCLOTH_CLI="$<TARGET_FILE:neurocloth-cli>"
