@@ -1,5 +1,5 @@
 // neurocloth-cli: batch access to the simulation core (simulate, relax, bench,
-// material, tradeoff, fit) and headless snapshots (snapshot).
+// material, tradeoff, fit, tune-rules) and headless snapshots (snapshot).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -131,6 +131,24 @@ int main(int argc, char** argv) {
   fit_cmd->add_option("--learning-rate", fit.learning_rate,
                       "Online: the largest change of one parameter per window, log units (0.05)");
 
+  TuneRulesOptions tune;
+  auto* tune_cmd = app.add_subcommand(
+      "tune-rules",
+      "Tune a rule base's terms to examples of what it should give; write the tuned FCL");
+  tune_cmd->add_option("--rules", tune.rules, "The rule base to tune (FCL)")->required();
+  tune_cmd
+      ->add_option("--examples", tune.examples,
+                   "CSV: a header naming every input and the outputs to tune, one example a row")
+      ->required();
+  tune_cmd->add_option("--out", tune.out, "OUT.fcl (also OUT.examples.csv)")->required();
+  tune_cmd
+      ->add_option("--what", tune.what,
+                   "mf (inputs' membership functions and Mamdani output sets; inputs or sets for "
+                   "one half), consequents (Sugeno), or both (default)")
+      ->delimiter(',');
+  tune_cmd->add_option("--iterations", tune.iterations, "At most this many (default 500)");
+  tune_cmd->add_option("--time", tune.time, "Stop after this many wall seconds (default: none)");
+
 #ifdef NEUROCLOTH_HAS_SNAPSHOT
   SnapshotOptions snap;
   auto* snapshot = app.add_subcommand(
@@ -165,6 +183,7 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return run_bench(bench);
     if (*material) return run_material(mat);
     if (*fit_cmd) return run_fit(fit);
+    if (*tune_cmd) return run_tune_rules(tune);
 #ifdef NEUROCLOTH_HAS_SNAPSHOT
     if (*snapshot) return run_snapshot(snap);
 #endif

@@ -144,4 +144,19 @@ std::vector<std::string> block_names(const FitProblem& problem);
 // the files `scene` was read from (InputError naming --out).
 void check_fit_outputs(const FitOptions& options, const Scene& scene);
 
+// Tunes a rule base's terms to examples of what it should give and writes the
+// tuned FCL and OUT.examples.csv (docs/learning.md, "Tuning a rule base from
+// examples"). Exit codes: 0 done (the best rule base is written); 3 a loss
+// came back NaN (the best before it written); 130 Ctrl-C (the best so far
+// written); 1 bad input (nothing written).
+struct TuneRulesOptions {
+  std::string rules;              // --rules IN.fcl
+  std::string examples;           // --examples EXAMPLES.csv
+  std::string out;                // --out OUT.fcl (and OUT.examples.csv)
+  std::vector<std::string> what;  // --what mf|inputs|sets,consequents; empty: mf,consequents
+  int iterations = 500;           // --iterations, 1 .. 1e6
+  double time = 0;                // --time, wall seconds; 0: none
+};
+int run_tune_rules(const TuneRulesOptions& options);
+
 }  // namespace neurocloth

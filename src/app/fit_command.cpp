@@ -1,8 +1,6 @@
 // neurocloth-cli fit: the network's weights fitted to a reference motion
 // (paper eq. 18-19) by L-BFGS or gradient descent, the parameters' uncertainty
 // at the optimum, and FITTED.json with its curves (docs/learning.md).
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +15,7 @@
 #include "long_run.h"
 #include "motion_outputs.h"
 #include "optimizer.h"
+#include "progress_line.h"
 #include "reference_motion.h"
 #include "scene.h"
 #include "uncertainty.h"
@@ -89,50 +88,18 @@ double column_value(const Column& c, const Eigen::VectorXd& theta) {
   return b.log_space ? std::exp(mean) : mean;
 }
 
-// The progress line: updated in place on a terminal, one line per iteration otherwise.
-class ProgressLine {
- public:
-  ProgressLine(const FitOptions& o) : options_(o), terminal_(isatty(fileno(stdout)) != 0) {}
-
-  void show(const IterationInfo& it, const Eigen::VectorXd& theta, double rms_m,
-            const std::vector<Column>& columns) {
-    std::string line =
-        "iteration " + std::to_string(it.iteration) + "/" + std::to_string(options_.max_iterations);
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "  loss %.6g  RMS %.4g mm", it.loss, rms_m * 1e3);
+// The fit's fields of the progress line: loss, RMS and each column's value.
+std::string progress_details(const IterationInfo& it, const Eigen::VectorXd& theta, double rms_m,
+                             const std::vector<Column>& columns) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "loss %.6g  RMS %.4g mm", it.loss, rms_m * 1e3);
+  std::string line = buf;
+  for (const Column& c : columns) {
+    std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, theta));
     line += buf;
-    for (const Column& c : columns) {
-      std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, theta));
-      line += buf;
-    }
-    line += "  " + eta(it);
-    if (terminal_) {
-      std::printf("\r%s\x1b[K", line.c_str());
-      open_ = true;
-    } else {
-      std::printf("%s\n", line.c_str());
-    }
-    std::fflush(stdout);
   }
-  // Ends an in-place line so the next output starts on its own line.
-  void close() {
-    if (open_) std::printf("\n");
-    open_ = false;
-  }
-
- private:
-  // The fit may converge sooner: the budgets give an upper bound.
-  std::string eta(const IterationInfo& it) const {
-    if (it.iteration == 0) return "ETA -";
-    double left = it.seconds / it.iteration * (options_.max_iterations - it.iteration);
-    if (options_.time_budget > 0) left = std::min(left, options_.time_budget - it.seconds);
-    return "ETA <= " + human_duration(std::max(0.0, left));
-  }
-
-  const FitOptions& options_;
-  bool terminal_;
-  bool open_ = false;
-};
+  return line;
+}
 
 std::vector<UncertainParameter> unknowns_of(const FitProblem& problem) {
   std::vector<UncertainParameter> out(problem.size());
@@ -253,7 +220,7 @@ int run_fit(const FitOptions& o) {
   FitHistory history;
   for (const Column& c : columns)
     history.columns.push_back(c.name);
-  ProgressLine progress(o);
+  ProgressLine progress(o.max_iterations, o.time_budget);
   const InterruptScope ctrl_c;
   opt.should_stop = [] { return InterruptScope::interrupted(); };
   const OptimizerResult result =
@@ -263,7 +230,7 @@ int run_fit(const FitOptions& o) {
         for (const Column& c : columns)
           row.parameters.push_back(column_value(c, theta));
         history.rows.push_back(row);
-        progress.show(it, theta, row.rms_m, columns);
+        progress.show(it, progress_details(it, theta, row.rms_m, columns));
         return !InterruptScope::interrupted();
       });
   progress.close();

@@ -2,11 +2,13 @@
 
 #include <LBFGS.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace neurocloth {
 namespace {
@@ -225,6 +227,53 @@ void run_gradient_descent(Driver& driver, const Vector& start) {
   }
 }
 
+// SPG (optimizer.h): the projected gradient P(x - g) - x stands for the
+// gradient in the driver's stop test, as it vanishes at a constrained optimum.
+void run_projected(Driver& driver, const Projection& project, const Vector& start) {
+  constexpr double kArmijo = 1e-4, kMinStep = 1e-10, kMaxStep = 1e10;
+  constexpr std::size_t kMemory = 10;  // losses the non-monotone test looks back on
+  Vector x = project(start), g(x.size()), trial_g(x.size());
+  double f = driver.evaluate(x, &g);
+  std::vector<double> recent = {f};
+  auto projected_gradient = [&](const Vector& at, const Vector& grad) -> Vector {
+    return project(at - grad) - at;
+  };
+  Vector pg = projected_gradient(x, g);
+  driver.accept(x, f, pg);
+  double lambda = std::clamp(1 / std::max(pg.cwiseAbs().maxCoeff(), 1e-300), kMinStep, kMaxStep);
+  for (;;) {
+    const Vector d = project(x - lambda * g) - x;
+    const double slope = g.dot(d);
+    if (!(slope < 0))
+      throw Stop{StopReason::line_search_failed,
+                 "the projected step does not lower the loss (a constrained optimum, to rounding)"};
+    const double reference = *std::max_element(recent.begin(), recent.end());
+    double t = 1, trial_f = 0;
+    for (int tries = 0;; ++tries) {
+      trial_f = driver.evaluate(x + t * d, &trial_g);
+      if (trial_f <= reference + kArmijo * t * slope) break;
+      if (tries == 40)
+        throw Stop{StopReason::line_search_failed,
+                   "no step towards the projected gradient lowered the loss"};
+      // The minimum of the quadratic through f, the slope and the trial, kept
+      // within [0.1 t, 0.5 t]; halved when the trial was not finite.
+      const double q =
+          std::isfinite(trial_f) ? -slope * t * t / (2 * (trial_f - f - slope * t)) : 0.5 * t;
+      t = std::clamp(q, 0.1 * t, 0.5 * t);
+    }
+    const Vector s = t * d, y = trial_g - g;
+    x += s;
+    f = trial_f;
+    g.swap(trial_g);
+    recent.push_back(f);
+    if (recent.size() > kMemory) recent.erase(recent.begin());
+    const double sy = s.dot(y);
+    lambda = sy > 0 ? std::clamp(s.squaredNorm() / sy, kMinStep, kMaxStep) : kMaxStep;
+    pg = projected_gradient(x, g);
+    driver.accept(x, f, pg);
+  }
+}
+
 void check(const OptimizerOptions& o) {
   if (o.max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
   if (!(o.time_budget >= 0)) throw std::invalid_argument("the time budget must be >= 0");
@@ -294,6 +343,21 @@ OptimizerResult minimize(const Objective& objective, const Vector& start,
   } catch (const std::exception& e) {  // LBFGSpp: a line search that found no lower point
     return driver.finish(StopReason::line_search_failed,
                          std::string("the line search found no lower loss (") + e.what() + ")");
+  }
+}
+
+OptimizerResult minimize_projected(const Objective& objective, const Projection& project,
+                                   const Vector& start, const OptimizerOptions& options,
+                                   const IterationCallback& callback) {
+  check(options);
+  Driver driver(objective, options, callback);
+  try {
+    run_projected(driver, project, start);
+    return driver.finish(StopReason::gradient_small, "the projected gradient vanished");
+  } catch (const Stop& stop) {
+    return driver.finish(stop.reason, stop.message);
+  } catch (const ObjectiveThrew&) {
+    return driver.finish(StopReason::stopped, "");  // rethrows the objective's exception
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Minimising a smooth objective from its value and gradient: what fits the
-// network's weights to a reference motion (paper eq. 18-19), though nothing
-// here knows of cloth. Two methods:
+// network's weights to a reference motion (paper eq. 18-19) and tunes a rule
+// base to examples, though nothing here knows of cloth or rules. Two methods
+// unconstrained, and one over a convex set (minimize_projected, below):
 //  - L-BFGS (LBFGSpp), with a backtracking line search to the Wolfe conditions;
 //  - the paper's plain gradient descent, theta <- theta - a grad, with the step
 //    a chosen by backtracking until the loss drops by at least 1e-4 a |grad|^2
@@ -96,5 +97,21 @@ struct OptimizerResult {
 // throws is passed on.
 OptimizerResult minimize(const Objective& objective, const Eigen::VectorXd& start,
                          const OptimizerOptions& options, const IterationCallback& callback = {});
+
+// Maps any theta onto a closed convex set (need not be the exact Euclidean
+// projection, but must leave points of the set where they are).
+using Projection = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+
+// Minimises `objective` over the set from project(start): the spectral
+// projected gradient method (SPG; Birgin, Martinez and Raydan 2000). Each
+// iteration searches from theta towards P(theta - lambda grad), lambda the
+// Barzilai-Borwein step of the last iteration, with a non-monotone Armijo
+// backtracking over the last 10 losses; every trial point mixes two points of
+// the set, so it stays inside. `options.method` and `lbfgs_memory` are
+// ignored; the gradient test is on the projected gradient P(theta - grad) -
+// theta, relative to its start (the callback's loss and theta as for minimize).
+OptimizerResult minimize_projected(const Objective& objective, const Projection& project,
+                                   const Eigen::VectorXd& start, const OptimizerOptions& options,
+                                   const IterationCallback& callback = {});
 
 }  // namespace neurocloth

@@ -1,0 +1,165 @@
+#include "rule_examples.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string_view>
+
+#include "csv_fields.h"
+#include "input_error.h"
+#include "text_file.h"
+
+namespace neurocloth {
+namespace {
+
+using fuzzy::FuzzySystem;
+using fuzzy::LinguisticVariable;
+
+std::string range_of(const LinguisticVariable& v) {
+  std::ostringstream os;
+  os << "[" << v.min << ", " << v.max << "]";
+  return os.str();
+}
+
+// What one column holds: an input (index into the rule base's inputs) or a target.
+struct Column {
+  std::string name;
+  bool input;
+  int index;  // input index, or k in RuleExamples::outputs
+  const LinguisticVariable* variable;
+};
+
+class ExampleReader {
+ public:
+  ExampleReader(const std::string& path, const FuzzySystem& system) : path_(path), system_(system) {
+    examples_.path = path;
+  }
+
+  void header(std::string_view line, int line_number) {
+    const auto fields = split_fields(line);
+    std::vector<bool> input_seen(system_.inputs.size(), false);
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const std::string name(fields[c]);
+      const int column = int(c) + 1;
+      for (const Column& seen : columns_)
+        if (seen.name == name)
+          throw InputError(path_, name, "named twice in the header", line_number, column);
+      if (const int i = system_.input_index(name); i >= 0) {
+        input_seen[i] = true;
+        columns_.push_back({name, true, i, &system_.inputs[i]});
+      } else if (const int o = system_.output_index(name); o >= 0) {
+        columns_.push_back({name, false, int(examples_.outputs.size()), &system_.outputs[o]});
+        examples_.outputs.push_back(o);
+      } else {
+        throw InputError(path_, name.empty() ? "header" : name,
+                         "not an input or output of rule base '" + system_.name + "'" +
+                             (name.empty() ? " (an empty column name)" : ""),
+                         line_number, column);
+      }
+    }
+    for (std::size_t i = 0; i < input_seen.size(); ++i)
+      if (!input_seen[i])
+        throw InputError(path_, system_.inputs[i].name,
+                         "input missing from the header: every example gives every input of '" +
+                             system_.name + "'",
+                         line_number);
+    if (examples_.outputs.empty())
+      throw InputError(path_, "header",
+                       "names no output of '" + system_.name +
+                           "': add the outputs to tune, each with the value it should give",
+                       line_number);
+  }
+
+  void row(std::string_view line, int line_number) {
+    const auto fields = split_fields(line);
+    if (fields.size() != columns_.size())
+      throw InputError(path_, fields.size() < columns_.size() ? columns_[fields.size()].name : "",
+                       "expected " + std::to_string(columns_.size()) +
+                           " fields as the header, found " + std::to_string(fields.size()),
+                       line_number);
+    if (examples_.size() == kMaxExampleRows)
+      throw InputError(path_, "", "more than " + std::to_string(kMaxExampleRows) + " examples",
+                       line_number);
+    std::vector<double> inputs(system_.inputs.size()), targets(examples_.outputs.size());
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const Column& col = columns_[c];
+      const double v = number(fields[c], col, line_number, int(c) + 1);
+      if (v < col.variable->min || v > col.variable->max)
+        throw InputError(path_, col.name,
+                         shown(fields[c]) + " is outside " + col.name + "'s RANGE " +
+                             range_of(*col.variable) +
+                             (col.input ? " (refused rather than clamped: the rule base would see "
+                                          "the clamped value)"
+                                        : " (the rule base cannot give it)"),
+                         line_number, int(c) + 1);
+      (col.input ? inputs : targets)[col.index] = v;
+    }
+    examples_.inputs.push_back(std::move(inputs));
+    examples_.targets.push_back(std::move(targets));
+    examples_.lines.push_back(line_number);
+  }
+
+  RuleExamples finish(int last_line) {
+    if (examples_.size() == 0)
+      throw InputError(path_, "", "no examples: the header and no rows", last_line);
+    return std::move(examples_);
+  }
+
+ private:
+  double number(std::string_view field, const Column& col, int line, int column) const {
+    const std::string s(field);
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size())
+      throw InputError(path_, col.name, "not a number: " + shown(field), line, column);
+    // strtod reads "nan" and "inf", and overflows to infinity.
+    if (!std::isfinite(v))
+      throw InputError(path_, col.name, "NaN or infinite: " + shown(field), line, column);
+    return v;
+  }
+
+  const std::string& path_;
+  const FuzzySystem& system_;
+  std::vector<Column> columns_;
+  RuleExamples examples_;
+};
+
+}  // namespace
+
+RuleExamples parse_rule_examples(const std::string& text, const std::string& path,
+                                 const FuzzySystem& system) {
+  std::string_view rest(text);
+  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
+  ExampleReader reader(path, system);
+  bool have_header = false;
+  int line_number = 0;
+  while (!rest.empty()) {
+    const std::size_t eol = rest.find('\n');
+    const std::string_view line = trimmed(rest.substr(0, eol));
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+    if (line_number == std::numeric_limits<int>::max())
+      throw InputError(path, "", "too many lines", line_number);
+    ++line_number;
+    if (line.empty() || line.front() == '#') continue;
+    if (!have_header) {
+      reader.header(line, line_number);
+      have_header = true;
+    } else {
+      reader.row(line, line_number);
+    }
+  }
+  if (!have_header)
+    throw InputError(path, "header",
+                     "empty: expected a header naming every input and the outputs to tune",
+                     line_number);
+  return reader.finish(line_number);
+}
+
+RuleExamples read_rule_examples(const std::string& path, const FuzzySystem& system) {
+  return parse_rule_examples(read_text_file(path, "examples file", kMaxExampleBytes), path, system);
+}
+
+}  // namespace neurocloth
