@@ -163,6 +163,10 @@ TEST_F(FittedOutput, AMaterialInWordsBecomesNumbersAndKeepsItsMassShares) {
   EXPECT_NE(doc["fitted"]["replaces"].get<std::string>().find("material in words"),
             std::string::npos);
   EXPECT_FALSE(doc["material"].contains("rules"));
+  // What the fit teaches the rule base: its inputs and the fitted outputs.
+  EXPECT_EQ(read_text(fitted_file_names(out()).example),
+            "# from a fit of " + original.path + " to " + summary().reference +
+                "\nelasticity,force,mass,spring_constant,viscosity\n0.3,3,0.2,321,0.05\n");
 }
 
 TEST_F(FittedOutput, FittedInputsKeepTheMaterialInWords) {
@@ -176,6 +180,7 @@ TEST_F(FittedOutput, FittedInputsKeepTheMaterialInWords) {
   s.words = {"elasticity 0.61: big 0.58, medium 0.13"};
   const FittedFiles files = write_fit_outputs(original, model, s, history(), out());
   EXPECT_TRUE(files.weights.empty());  // the rule base builds the network as fitted
+  EXPECT_TRUE(files.example.empty());  // the words themselves were fitted: nothing to teach
   const Scene fitted = load_scene(out());
   ASSERT_TRUE(fitted.fuzzy_material);
   EXPECT_EQ(fitted.fuzzy_material->inputs, model.scene.fuzzy_material->inputs);

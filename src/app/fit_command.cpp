@@ -48,7 +48,7 @@ OptimizerMethod check_options(const FitOptions& o) {
   if (!std::filesystem::is_directory(folder))
     refuse("--out", "the folder " + folder.string() + " does not exist");
   const FittedFiles files = fitted_file_names(o.out);
-  for (const std::string& f : {files.scene, files.weights, files.csv, files.png})
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png, files.example})
     check_output_path("--out", f, {o.scene, o.reference});
   return method;
 }
@@ -58,7 +58,7 @@ OptimizerMethod check_options(const FitOptions& o) {
 // Once the scene is read: its side files are inputs too.
 void check_fit_outputs(const FitOptions& o, const Scene& scene) {
   const FittedFiles files = fitted_file_names(o.out);
-  for (const std::string& f : {files.scene, files.weights, files.csv, files.png})
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png, files.example})
     check_output_path("--out", f, input_files(scene));
 }
 
@@ -284,6 +284,11 @@ int run_fit(const FitOptions& o) {
   std::printf("wrote %s%s%s, %s, %s (loss %.6g, RMS %.4g mm)\n", files.scene.c_str(),
               files.weights.empty() ? "" : ", ", files.weights.c_str(), files.csv.c_str(),
               files.png.c_str(), summary.loss, summary.rms_m * 1e3);
+  if (!files.example.empty())
+    std::printf(
+        "wrote %s: this fit as an example for tune-rules (the scene's words and the "
+        "fitted values)\n",
+        files.example.c_str());
   return exit_code(result.reason);
 }
 

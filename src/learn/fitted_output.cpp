@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "element_weights.h"
+#include "fuzzy_material.h"
 #include "json_writer.h"
 #include "loss_chart.h"
 #include "text_file.h"
@@ -110,7 +111,7 @@ FittedFiles fitted_file_names(const std::string& out) {
   fs::path base(out);
   base.replace_extension();
   const std::string b = base.string();
-  return {out, b + ".weights.json", b + ".loss.csv", b + ".loss.png"};
+  return {out, b + ".weights.json", b + ".loss.csv", b + ".loss.png", b + ".example.csv"};
 }
 
 std::string rebased_path(const std::string& from, const std::string& written,
@@ -202,6 +203,26 @@ std::string loss_csv(const FitHistory& h) {
   return text;
 }
 
+std::optional<std::string> tuning_example(const Scene& original, const FitSummary& summary) {
+  if (!original.fuzzy_material || !summary.words.empty()) return std::nullopt;
+  std::string header, row;
+  for (const auto& [name, value] : original.fuzzy_material->inputs) {
+    header += (header.empty() ? "" : ",") + name;
+    row += (row.empty() ? "" : ",") + csv_number(value);
+  }
+  bool any = false;
+  for (const char* output : FuzzyMaterial::kOutputs)
+    for (const ParameterUncertainty& p : summary.parameters)
+      if (p.name == output) {
+        header += std::string(",") + output;
+        row += "," + csv_number(p.value);
+        any = true;
+      }
+  if (!any) return std::nullopt;
+  return "# from a fit of " + original.path + " to " + summary.reference + "\n" + header + "\n" +
+         row + "\n";
+}
+
 FittedFiles write_fit_outputs(const Scene& original, const FittedModel& model,
                               const FitSummary& summary, const FitHistory& history,
                               const std::string& out) {
@@ -218,6 +239,8 @@ FittedFiles write_fit_outputs(const Scene& original, const FittedModel& model,
       throw std::runtime_error(out + ": the fitted value at " + *at + " is not finite");
   }
   const std::string csv = loss_csv(history);
+  const std::optional<std::string> example = tuning_example(original, summary);
+  if (!example) files.example.clear();
   std::vector<LossPoint> curve;
   for (const FitHistoryRow& r : history.rows)
     curve.push_back({r.iteration, r.loss});
@@ -237,6 +260,10 @@ FittedFiles write_fit_outputs(const Scene& original, const FittedModel& model,
     written.push_back(files.csv);
     write_file_atomically(files.png, png.str());
     written.push_back(files.png);
+    if (example) {
+      write_file_atomically(files.example, *example);
+      written.push_back(files.example);
+    }
     write_file_atomically(files.scene, scene.dump(2) + "\n");
   } catch (...) {
     for (const std::string& f : written) {

@@ -12,7 +12,8 @@
 //  FITTED.weights.json  every spring's stiffness, damping, rest length and every
 //                       node's mass (element_weights.h);
 //  FITTED.loss.csv      iteration, loss, rms_mm, seconds, each parameter;
-//  FITTED.loss.png      the loss curve.
+//  FITTED.loss.png      the loss curve;
+//  FITTED.example.csv   for a material in words: the example it gives tune-rules.
 // `simulate` and the viewer load FITTED.json as it is.
 #include <nlohmann/json.hpp>
 
@@ -66,6 +67,7 @@ struct FitHistory {
 
 struct FittedFiles {
   std::string scene, weights, csv, png;
+  std::string example;  // FITTED.example.csv, or "" when none is written
 };
 // FITTED.json -> FITTED.weights.json, FITTED.loss.csv, FITTED.loss.png (any
 // extension of `out` is replaced; none is added to the scene's own name).
@@ -87,6 +89,12 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
                                          const FitSummary& summary, const std::string& out,
                                          const std::string& weights_file);
 std::string loss_csv(const FitHistory& history);
+// What a fit of numbers to a material in words teaches its rule base: one
+// example for `tune-rules` (rule_examples.h), the scene's inputs and the
+// fitted family values of the rule base's outputs (spring_constant,
+// node_mass, viscosity, friction), as FITTED.example.csv. Nothing for a
+// numeric material, a fit of the inputs, or a fit of none of those outputs.
+std::optional<std::string> tuning_example(const Scene& original, const FitSummary& summary);
 
 // Writes the four files (three when there is no side file). Everything is
 // made in memory first and each file is written atomically; if a write fails,
