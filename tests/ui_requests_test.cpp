@@ -75,7 +75,7 @@ TEST(UiRequests, ABadSceneIsNamedAndNotPosted) {
 }
 
 TEST(UiRequests, RulesNeedALinguisticMaterial) {
-  SceneInfo numeric(load_scene(scene_asset("table_drape")));
+  SceneInfo numeric(load_scene(scene_asset("hanging")));
   Posted posted;
   EXPECT_NE(request_rules(numeric, assets_directory() + "/materials/cloth.fcl", posted.sink()), "");
   EXPECT_TRUE(posted.commands.empty());

@@ -54,20 +54,42 @@ std::vector<std::string> preset_names() {
   return names;
 }
 
+namespace {
+
+// The one table from a rule base's outputs to the material: outputs_[k] holds
+// the index of kOutputs[k] (k < 4), then of kOptionalOutputs[k - 4].
+struct OutputSlot {
+  double Material::*field;
+  bool positive;  // must be above 0 (a node needs mass), else only not below 0
+};
+constexpr OutputSlot kSlots[6] = {
+    {&Material::spring_constant, false}, {&Material::node_mass, true},
+    {&Material::viscosity, false},       {&Material::friction, false},
+    {&Material::shear_constant, false},  {&Material::bend_constant, false}};
+constexpr int kRequired = 4;
+
+const char* output_name(int k) {
+  return k < kRequired ? FuzzyMaterial::kOutputs[k]
+                       : FuzzyMaterial::kOptionalOutputs[k - kRequired];
+}
+
+}  // namespace
+
 FuzzyMaterial::FuzzyMaterial(fuzzy::FuzzySystem system, std::string source)
     : system_(std::move(system)), source_(std::move(source)) {
-  for (int k = 0; k < 4; ++k) {
-    outputs_[k] = system_.output_index(kOutputs[k]);
-    if (outputs_[k] < 0)
+  for (int k = 0; k < 6; ++k) {
+    outputs_[k] = system_.output_index(output_name(k));
+    if (outputs_[k] < 0) {
+      if (k >= kRequired) continue;
       throw InputError(
           source_, "VAR_OUTPUT",
-          std::string("a material rule base needs an output named '") + kOutputs[k] + "'");
+          std::string("a material rule base needs an output named '") + output_name(k) + "'");
+    }
     const fuzzy::LinguisticVariable& v = system_.outputs[outputs_[k]];
-    const bool mass = k == 1;
-    if (mass ? !(v.min > 0) : v.min < 0)
-      throw InputError(
-          source_, std::string("DEFUZZIFY ") + kOutputs[k],
-          mass ? "RANGE must be above 0 (a node needs mass)" : "RANGE must not go below 0");
+    if (kSlots[k].positive ? !(v.min > 0) : v.min < 0)
+      throw InputError(source_, std::string("DEFUZZIFY ") + output_name(k),
+                       kSlots[k].positive ? "RANGE must be above 0 (a node needs mass)"
+                                          : "RANGE must not go below 0");
   }
 }
 
@@ -99,10 +121,8 @@ DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& input
   DerivedMaterial d;
   d.report = fuzzy::infer(system_, x);
   const auto& y = d.report.outputs;
-  d.material.spring_constant = y[outputs_[0]];
-  d.material.node_mass = y[outputs_[1]];
-  d.material.viscosity = y[outputs_[2]];
-  d.material.friction = y[outputs_[3]];
+  for (int k = 0; k < 6; ++k)
+    if (outputs_[k] >= 0) d.material.*kSlots[k].field = y[outputs_[k]];
   return d;
 }
 
