@@ -90,6 +90,14 @@ TEST(UiRequests, RulesNeedALinguisticMaterial) {
   EXPECT_EQ(std::get<LoadRules>(posted.commands[0]).rules, fuzzy.fuzzy()->rules());
 }
 
+// The scene the window opens first speaks in words: the Material panel shows
+// its rule base and input sliders, not "given as numbers".
+TEST(UiRequests, TheDefaultSceneHasALinguisticMaterial) {
+  const SceneInfo scene(load_scene(scene_asset("table_drape")));
+  ASSERT_TRUE(scene.fuzzy().has_value());
+  EXPECT_NE(scene.fuzzy()->rules_path().find("cloth.fcl"), std::string::npos);
+}
+
 TEST(UiRequests, TheUiSharesTheScenesRuleBase) {
   const Scene scene =
       test::fuzzy_scene_without_its_rules(std::string(NEUROCLOTH_TEST_TMP) + "/ui_rules_once");
