@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "asset_paths.h"
@@ -56,8 +57,9 @@ std::vector<std::string> preset_names() {
 
 namespace {
 
-// The one table from a rule base's outputs to the material: outputs_[k] holds
-// the index of kOutputs[k] (k < 4), then of kOptionalOutputs[k - 4].
+// The one table from a rule base's outputs to the material: slot k is
+// kOutputs[k], then kOptionalOutputs[k - kRequired]; outputs_[k] holds where the
+// rule base has it.
 struct OutputSlot {
   double Material::*field;
   bool positive;  // must be above 0 (a node needs mass), else only not below 0
@@ -66,7 +68,11 @@ constexpr OutputSlot kSlots[6] = {
     {&Material::spring_constant, false}, {&Material::node_mass, true},
     {&Material::viscosity, false},       {&Material::friction, false},
     {&Material::shear_constant, false},  {&Material::bend_constant, false}};
-constexpr int kRequired = 4;
+constexpr int kSlotCount = static_cast<int>(std::size(kSlots));
+constexpr int kRequired = static_cast<int>(std::size(FuzzyMaterial::kOutputs));
+static_assert(std::size(kSlots) ==
+                  std::size(FuzzyMaterial::kOutputs) + std::size(FuzzyMaterial::kOptionalOutputs),
+              "one slot per output, required then optional");
 
 const char* output_name(int k) {
   return k < kRequired ? FuzzyMaterial::kOutputs[k]
@@ -77,7 +83,7 @@ const char* output_name(int k) {
 
 FuzzyMaterial::FuzzyMaterial(fuzzy::FuzzySystem system, std::string source)
     : system_(std::move(system)), source_(std::move(source)) {
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < kSlotCount; ++k) {
     outputs_[k] = system_.output_index(output_name(k));
     if (outputs_[k] < 0) {
       if (k >= kRequired) continue;
@@ -121,7 +127,7 @@ DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& input
   DerivedMaterial d;
   d.report = fuzzy::infer(system_, x);
   const auto& y = d.report.outputs;
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < kSlotCount; ++k)
     if (outputs_[k] >= 0) d.material.*kSlots[k].field = y[outputs_[k]];
   return d;
 }
