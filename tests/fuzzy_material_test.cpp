@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
+#include <string>
 
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/fcl_writer.h"
@@ -86,6 +88,7 @@ TEST(FuzzyMaterial, ShippedRuleBaseRoundTripsThroughTheWriter) {
     EXPECT_EQ(a.node_mass, b.node_mass) << name;
     EXPECT_EQ(a.viscosity, b.viscosity) << name;
     EXPECT_EQ(a.friction, b.friction) << name;
+    EXPECT_EQ(a.bend_constant, b.bend_constant) << name;
   }
 }
 
@@ -128,6 +131,52 @@ TEST(FuzzyMaterial, PresetsComeOutInASensibleOrder) {
   EXPECT_LT(silk.friction, cotton.friction);
 }
 
+// shear_constant and bend_constant are optional outputs: a rule base without
+// them leaves shear and bend springs at the spring constant, one with them sets
+// them, and their ranges are checked like the others'.
+TEST(FuzzyMaterial, ShearAndBendOutputsAreOptional) {
+  const fuzzy::FuzzySystem shipped = fuzzy::read_fcl(assets_directory() + "/materials/cloth.fcl");
+  const std::map<std::string, double> inputs = {{"mass", 0.4}, {"elasticity", 0.2}, {"force", 6}};
+  const Material with = FuzzyMaterial(shipped, "with").derive(inputs).material;
+  const int bend = shipped.output_index("bend_constant");
+  ASSERT_GE(bend, 0);
+  EXPECT_GT(with.bend_constant, shipped.outputs[bend].min);
+  EXPECT_LT(with.bend_constant, 0.5 * with.spring_constant);  // cloth bends more easily
+  EXPECT_EQ(with.shear(), with.spring_constant);
+
+  // The same rule base written without bend_constant (its output and the rules that set it).
+  std::string text = fuzzy::write_fcl(shipped);
+  const auto cut = [&](const std::string& from, const std::string& to) {
+    const std::size_t a = text.find(from);
+    ASSERT_NE(a, std::string::npos) << from;
+    const std::size_t b = text.find(to, a);
+    ASSERT_NE(b, std::string::npos) << to;
+    text.erase(a, b + to.size() - a);
+  };
+  cut("bend_constant : REAL;", ";");
+  cut("DEFUZZIFY bend_constant", "END_DEFUZZIFY");
+  cut("RULEBLOCK bending", "END_RULEBLOCK");
+  const fuzzy::FuzzySystem without_bend = fuzzy::parse_fcl(text, "without_bend.fcl");
+  ASSERT_LT(without_bend.output_index("bend_constant"), 0);
+  const Material without = FuzzyMaterial(without_bend, "without").derive(inputs).material;
+  EXPECT_LT(without.bend_constant, 0);
+  EXPECT_EQ(without.bend(), without.spring_constant);
+  EXPECT_EQ(without.spring_constant, with.spring_constant);  // nothing else moves
+  EXPECT_EQ(without.node_mass, with.node_mass);
+  EXPECT_EQ(without.viscosity, with.viscosity);
+  EXPECT_EQ(without.friction, with.friction);
+
+  fuzzy::FuzzySystem negative = shipped;
+  negative.outputs[bend].min = -1;
+  try {
+    FuzzyMaterial(negative, "negative.fcl");
+    FAIL() << "a bend_constant range below 0 must be refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "negative.fcl");
+    EXPECT_EQ(e.field(), "DEFUZZIFY bend_constant");
+  }
+}
+
 TEST(FuzzyMaterial, PresetNamesAndErrors) {
   const auto names = preset_names();
   for (const char* n : {"silk", "cotton", "denim", "leather", "rubber"})
@@ -163,11 +212,21 @@ TEST(FuzzyMaterial, SceneMaterialFromRulesSetsEveryWeight) {
   const Material expected = FuzzyMaterial::load(scene.fuzzy_material->rules_path)
                                 .derive(scene.fuzzy_material->inputs)
                                 .material;
+  // cloth.fcl has a bend_constant output (and no shear_constant): bend springs
+  // take it, shear springs the spring constant.
+  ASSERT_GE(expected.bend_constant, 0);
+  ASSERT_LT(expected.shear_constant, 0);
   const ClothNetwork net = scene.build_network();
+  int families[3] = {0, 0, 0};
   for (std::size_t s = 0; s < net.spring_count(); ++s) {
-    ASSERT_EQ(net.springs.stiffness[s], expected.spring_constant);
+    const SpringFamily f = net.springs.family[s];
+    ++families[static_cast<int>(f)];
+    ASSERT_EQ(net.springs.stiffness[s],
+              f == SpringFamily::bend ? expected.bend_constant : expected.spring_constant);
     ASSERT_EQ(net.springs.damping[s], expected.viscosity);
   }
+  for (int count : families)
+    EXPECT_GT(count, 0);
   for (std::size_t i = 0; i < net.node_count(); ++i)
     ASSERT_EQ(net.masses.friction[i], expected.friction);
   // node_mass is the mass of 0.0025 m^2 of cloth; each node carries its lumped

@@ -11,11 +11,11 @@ TEST_F(Cli, MaterialFromRulesAndInputs) {
                          "elasticity=0.3", "--input", "force=3", "--json"});
   ASSERT_EQ(r.code, kOk) << r.err;
   const json doc = json::parse(r.out);
-  for (const char* out : {"spring_constant", "node_mass", "viscosity", "friction"})
+  for (const char* out : {"spring_constant", "node_mass", "viscosity", "friction", "bend_constant"})
     EXPECT_TRUE(doc.at("outputs").contains(out)) << out;
   // Sugeno node mass: density x 0.0025 m^2.
   EXPECT_NEAR(doc.at("outputs").at("node_mass").get<double>(), 0.2 * 0.0025, 1e-12);
-  EXPECT_EQ(doc.at("rule_activations").size(), 17u);
+  EXPECT_EQ(doc.at("rule_activations").size(), 22u);  // paper 3, coverage 14, bending 5
   EXPECT_EQ(doc.at("rule_activations")[0].at("rule"), "1");
   // The preset with the same inputs gives the same outputs.
   const Outcome p = run({"material", "--preset", "cotton", "--json"});
@@ -25,7 +25,8 @@ TEST_F(Cli, MaterialFromRulesAndInputs) {
   const Outcome t = run({"material", "--preset", "silk"});
   ASSERT_EQ(t.code, kOk);
   EXPECT_NE(t.out.find("spring_constant"), std::string::npos);
-  EXPECT_NE(t.out.find("RULE 17"), std::string::npos);
+  EXPECT_NE(t.out.find("bend_constant"), std::string::npos);
+  EXPECT_NE(t.out.find("RULE 22"), std::string::npos);
 }
 
 TEST_F(Cli, MaterialReportsClampedInputs) {

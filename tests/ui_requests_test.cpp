@@ -75,7 +75,7 @@ TEST(UiRequests, ABadSceneIsNamedAndNotPosted) {
 }
 
 TEST(UiRequests, RulesNeedALinguisticMaterial) {
-  SceneInfo numeric(load_scene(scene_asset("table_drape")));
+  SceneInfo numeric(load_scene(scene_asset("hanging")));
   Posted posted;
   EXPECT_NE(request_rules(numeric, assets_directory() + "/materials/cloth.fcl", posted.sink()), "");
   EXPECT_TRUE(posted.commands.empty());
@@ -88,6 +88,14 @@ TEST(UiRequests, RulesNeedALinguisticMaterial) {
   ASSERT_TRUE(fuzzy.fuzzy().has_value());
   // The simulation takes the rule base as read here: one read per load.
   EXPECT_EQ(std::get<LoadRules>(posted.commands[0]).rules, fuzzy.fuzzy()->rules());
+}
+
+// The scene the window opens first speaks in words: the Material panel shows
+// its rule base and input sliders, not "given as numbers".
+TEST(UiRequests, TheDefaultSceneHasALinguisticMaterial) {
+  const SceneInfo scene(load_scene(scene_asset("table_drape")));
+  ASSERT_TRUE(scene.fuzzy().has_value());
+  EXPECT_NE(scene.fuzzy()->rules_path().find("cloth.fcl"), std::string::npos);
 }
 
 TEST(UiRequests, TheUiSharesTheScenesRuleBase) {

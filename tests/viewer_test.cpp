@@ -87,6 +87,9 @@ TEST_F(Viewer, OpensTheDefaultSceneAndAScriptedRunExitsZero) {
   ASSERT_EQ(r.code, 0) << r.err;
   const json report = json::parse(read_text(path("report.json")));
   EXPECT_EQ(report["status"]["scene_name"], "table_drape");
+  // Its material is in words: the Material panel shows their sliders.
+  EXPECT_EQ(report["status"]["material_inputs"],
+            json({{"elasticity", 0.35}, {"force", 1.0}, {"mass", 1.5}}));
   // The first frame, the move's and the quit's: one time stamp per frame.
   EXPECT_GE(report["frames"]["drawn"].get<long>(), 2);
   EXPECT_FALSE(report["status"]["paused"].get<bool>());

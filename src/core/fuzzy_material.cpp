@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "asset_paths.h"
@@ -54,20 +55,48 @@ std::vector<std::string> preset_names() {
   return names;
 }
 
+namespace {
+
+// The one table from a rule base's outputs to the material: slot k is
+// kOutputs[k], then kOptionalOutputs[k - kRequired]; outputs_[k] holds where the
+// rule base has it.
+struct OutputSlot {
+  double Material::*field;
+  bool positive;  // must be above 0 (a node needs mass), else only not below 0
+};
+constexpr OutputSlot kSlots[6] = {
+    {&Material::spring_constant, false}, {&Material::node_mass, true},
+    {&Material::viscosity, false},       {&Material::friction, false},
+    {&Material::shear_constant, false},  {&Material::bend_constant, false}};
+constexpr int kSlotCount = static_cast<int>(std::size(kSlots));
+constexpr int kShearSlot = 4, kBendSlot = 5;
+constexpr int kRequired = static_cast<int>(std::size(FuzzyMaterial::kOutputs));
+static_assert(std::size(kSlots) ==
+                  std::size(FuzzyMaterial::kOutputs) + std::size(FuzzyMaterial::kOptionalOutputs),
+              "one slot per output, required then optional");
+
+const char* output_name(int k) {
+  return k < kRequired ? FuzzyMaterial::kOutputs[k]
+                       : FuzzyMaterial::kOptionalOutputs[k - kRequired];
+}
+
+}  // namespace
+
 FuzzyMaterial::FuzzyMaterial(fuzzy::FuzzySystem system, std::string source)
     : system_(std::move(system)), source_(std::move(source)) {
-  for (int k = 0; k < 4; ++k) {
-    outputs_[k] = system_.output_index(kOutputs[k]);
-    if (outputs_[k] < 0)
+  for (int k = 0; k < kSlotCount; ++k) {
+    outputs_[k] = system_.output_index(output_name(k));
+    if (outputs_[k] < 0) {
+      if (k >= kRequired) continue;
       throw InputError(
           source_, "VAR_OUTPUT",
-          std::string("a material rule base needs an output named '") + kOutputs[k] + "'");
+          std::string("a material rule base needs an output named '") + output_name(k) + "'");
+    }
     const fuzzy::LinguisticVariable& v = system_.outputs[outputs_[k]];
-    const bool mass = k == 1;
-    if (mass ? !(v.min > 0) : v.min < 0)
-      throw InputError(
-          source_, std::string("DEFUZZIFY ") + kOutputs[k],
-          mass ? "RANGE must be above 0 (a node needs mass)" : "RANGE must not go below 0");
+    if (kSlots[k].positive ? !(v.min > 0) : v.min < 0)
+      throw InputError(source_, std::string("DEFUZZIFY ") + output_name(k),
+                       kSlots[k].positive ? "RANGE must be above 0 (a node needs mass)"
+                                          : "RANGE must not go below 0");
   }
 }
 
@@ -101,10 +130,8 @@ std::vector<double> FuzzyMaterial::input_vector(const std::map<std::string, doub
 
 Material FuzzyMaterial::material_from(const std::vector<double>& y) const {
   Material m;
-  m.spring_constant = y[outputs_[0]];
-  m.node_mass = y[outputs_[1]];
-  m.viscosity = y[outputs_[2]];
-  m.friction = y[outputs_[3]];
+  for (int k = 0; k < kSlotCount; ++k)
+    if (outputs_[k] >= 0) m.*kSlots[k].field = y[static_cast<std::size_t>(outputs_[k])];
   return m;
 }
 
@@ -128,10 +155,9 @@ MaterialSensitivity FuzzyMaterial::sensitivity(const std::map<std::string, doubl
     for (Eigen::Index o = 0; o < g.d_inputs.rows(); ++o)
       dy[static_cast<std::size_t>(o)] = g.d_inputs(o, j);
     Material d = material_from(dy);
-    // The derived material's shear and bend springs follow its spring constant.
-    const Material& m = s.derived.material;
-    d.shear_constant = m.shear_constant < 0 ? d.spring_constant : d.shear_constant;
-    d.bend_constant = m.bend_constant < 0 ? d.spring_constant : d.bend_constant;
+    // Without their own outputs, shear and bend springs follow the spring constant.
+    if (outputs_[kShearSlot] < 0) d.shear_constant = d.spring_constant;
+    if (outputs_[kBendSlot] < 0) d.bend_constant = d.spring_constant;
     s.d_inputs.push_back(d);
   }
   return s;

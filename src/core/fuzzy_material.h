@@ -1,7 +1,8 @@
 #pragma once
 // The paper's fuzzy system in use: a rule base whose outputs are the network's
-// physical parameters (spring_constant, node_mass, viscosity, friction) and a
-// set of linguistic inputs ("mass", "elasticity", "force") that select them.
+// physical parameters (spring_constant, node_mass, viscosity, friction, and
+// optionally shear_constant and bend_constant) and a set of linguistic inputs
+// ("mass", "elasticity", "force") that select them.
 #include <map>
 #include <string>
 #include <vector>
@@ -46,6 +47,9 @@ class FuzzyMaterial {
   // The outputs every material rule base must define.
   static constexpr const char* kOutputs[] = {"spring_constant", "node_mass", "viscosity",
                                              "friction"};
+  // Outputs a rule base may define; without them shear and bend springs take
+  // the spring constant (Material::shear(), Material::bend()).
+  static constexpr const char* kOptionalOutputs[] = {"shear_constant", "bend_constant"};
   // node_mass is the mass of this much cloth (a node of a 5 cm grid), m^2;
   // scenes give each node its lumped share (Scene::build_network).
   static constexpr double kReferenceNodeArea = 0.0025;
@@ -76,7 +80,8 @@ class FuzzyMaterial {
 
   fuzzy::FuzzySystem system_;
   std::string source_;
-  int outputs_[4];
+  // Index of each of kOutputs then kOptionalOutputs in the system (-1: absent).
+  int outputs_[6];
 };
 
 }  // namespace neurocloth
