@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "asset_paths.h"
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/fcl_writer.h"
 #include "fuzzy_builders.h"
@@ -265,6 +266,70 @@ TEST(Inference, DerivativesMatchFiniteDifferences) {
   b.rules = {rule(is(0, 0, {Hedge::very}), 0, 0, 0.9), rule(is(0, 1, {Hedge::somewhat}), 0, 1)};
   smooth.blocks = {b};
   check_gradient(smooth, {0.45}, 1e-5);
+}
+
+// Derivatives with respect to chosen parameters are the matching columns of
+// the full ones, whichever order and subset is asked for; and all seeds carried
+// at once give what one seed at a time gives (each run then carries a single
+// derivative, so no two seeds' lists are ever merged: an independent check of
+// the sparse arithmetic in dual.h).
+bool same(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300});
+}
+
+void check_seeds(const FuzzySystem& s, const std::vector<double>& x) {
+  const InferenceGradient full = infer_gradient(s, x);
+  const std::size_t np = full.parameters.size();
+  ASSERT_EQ(full.d_parameters.cols(), Eigen::Index(np));
+  // Every third parameter, last first.
+  std::vector<Parameter> some;
+  std::vector<std::size_t> column;
+  for (std::size_t k = np; k-- > 0;)
+    if (k % 3 == 1) some.push_back(full.parameters[k]), column.push_back(k);
+  const InferenceGradient part = infer_gradient(s, x, some);
+  const InferenceGradient inputs_only = infer_gradient(s, x, {});
+  ASSERT_EQ(part.d_parameters.cols(), Eigen::Index(some.size()));
+  EXPECT_EQ(inputs_only.d_parameters.cols(), 0);
+  for (Eigen::Index o = 0; o < full.d_inputs.rows(); ++o) {
+    EXPECT_EQ(part.report.outputs[o], full.report.outputs[o]);
+    for (Eigen::Index i = 0; i < full.d_inputs.cols(); ++i) {
+      EXPECT_PRED2(same, part.d_inputs(o, i), full.d_inputs(o, i)) << "output " << o;
+      EXPECT_PRED2(same, inputs_only.d_inputs(o, i), full.d_inputs(o, i)) << "output " << o;
+    }
+    for (std::size_t j = 0; j < some.size(); ++j)
+      EXPECT_PRED2(same, part.d_parameters(o, Eigen::Index(j)),
+                   full.d_parameters(o, Eigen::Index(column[j])))
+          << some[j].name;
+  }
+  double largest = 0;  // the comparison means something only if derivatives are nonzero
+  for (std::size_t k = 0; k < np; ++k) {
+    const InferenceGradient one = infer_gradient(s, x, {full.parameters[k]});
+    for (Eigen::Index o = 0; o < full.d_inputs.rows(); ++o) {
+      EXPECT_PRED2(same, one.d_parameters(o, 0), full.d_parameters(o, Eigen::Index(k)))
+          << full.parameters[k].name << " output " << o;
+      largest = std::max(largest, std::abs(one.d_parameters(o, 0)));
+    }
+  }
+  EXPECT_GT(largest, 0.0);
+}
+
+TEST(Inference, ChosenSeedsGiveTheSameDerivativesAsAllSeeds) {
+  for (Activation act : {Activation::min, Activation::product})
+    check_seeds(two_rule_mamdani(act), {2.7});
+  check_seeds(sugeno(), {3.3});
+  const FuzzySystem cloth = read_fcl(assets_directory() + "/materials/cloth.fcl");
+  for (const std::vector<double>& x :
+       {std::vector<double>{0.2, 0.5, 3.0}, {0.05, 0.2, 8.0}, {0.9, 0.77, 6.1}})
+    check_seeds(cloth, x);
+}
+
+TEST(Inference, GradientRefusesUnknownAndRepeatedParameters) {
+  const FuzzySystem s = sugeno();
+  const Parameter p = parameters(s)[0];
+  EXPECT_THROW(infer_gradient(s, {3.3}, {p, p}), std::invalid_argument);
+  Parameter missing = p;
+  missing.term = 7;
+  EXPECT_THROW(infer_gradient(s, {3.3}, {missing}), std::invalid_argument);
 }
 
 }  // namespace
