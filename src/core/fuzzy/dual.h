@@ -28,7 +28,8 @@ class SparseGradient {
     std::uint32_t seed;
     double d;
   };
-  // Enough for a membership degree (input + 4 corners) and a rule of two conditions' minimum.
+  // Enough for a membership degree (an input and a trapezoid's 4 corners) and
+  // most activations (a MIN keeps one condition's).
   static constexpr std::uint32_t kInline = 6;
 
   SparseGradient() = default;
