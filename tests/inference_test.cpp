@@ -332,5 +332,57 @@ TEST(Inference, GradientRefusesUnknownAndRepeatedParameters) {
   EXPECT_THROW(infer_gradient(s, {3.3}, {missing}), std::invalid_argument);
 }
 
+// Under ACCU MAX the engine finds the winning implied set on plain numbers
+// and differentiates only it. Checked against the max taken over duals: the
+// same system with one more block, ACCU SUM, whose rule cannot fire (its input
+// sits where its term is flat at 0) takes the general path, and adding its
+// zero changes no value and no derivative.
+FuzzySystem with_idle_sum_block(FuzzySystem s) {
+  s.inputs.push_back(variable("idle", 0, 10, {{"far", mf(Shape::triangle, {5, 6, 7})}}));
+  RuleBlock idle;
+  idle.name = "idle";
+  idle.accumulation = Accumulation::sum;
+  idle.activation = s.blocks[0].activation;
+  for (std::size_t o = 0; o < s.outputs.size(); ++o)
+    if (s.outputs[o].method == Defuzzification::centroid)
+      idle.rules.push_back(rule(is(int(s.inputs.size()) - 1, 0), int(o), 0));
+  s.blocks.push_back(idle);
+  return s;
+}
+
+void check_max_shortcut(const FuzzySystem& s, std::vector<double> x) {
+  const std::vector<Parameter> wrt = parameters(s);
+  const InferenceGradient shortcut = infer_gradient(s, x, wrt);
+  x.push_back(1.0);  // "idle" is 0 there, with no slope
+  const InferenceGradient general = infer_gradient(with_idle_sum_block(s), x, wrt);
+  double largest = 0;
+  for (Eigen::Index o = 0; o < shortcut.d_inputs.rows(); ++o) {
+    EXPECT_EQ(general.report.outputs[o], shortcut.report.outputs[o]);
+    for (Eigen::Index i = 0; i < shortcut.d_inputs.cols(); ++i)
+      EXPECT_PRED2(same, general.d_inputs(o, i), shortcut.d_inputs(o, i)) << "output " << o;
+    for (std::size_t k = 0; k < wrt.size(); ++k) {
+      EXPECT_PRED2(same, general.d_parameters(o, Eigen::Index(k)),
+                   shortcut.d_parameters(o, Eigen::Index(k)))
+          << wrt[k].name << " output " << o;
+      largest = std::max(largest, std::abs(shortcut.d_parameters(o, Eigen::Index(k))));
+    }
+  }
+  EXPECT_GT(largest, 0.0);
+}
+
+TEST(Inference, AccuMaxShortcutEqualsTheMaxOverDuals) {
+  for (Activation act : {Activation::min, Activation::product})
+    check_max_shortcut(two_rule_mamdani(act), {2.7});
+  // Sampled: a consequent hedge makes the output set curved.
+  FuzzySystem hedged = two_rule_mamdani(Activation::min);
+  hedged.blocks[0].rules[1].consequents[0].hedges = {Hedge::very};
+  check_max_shortcut(hedged, {3.1});
+  // cloth.fcl: spring_constant sampled ("very low"), viscosity and friction exact.
+  const FuzzySystem cloth = read_fcl(assets_directory() + "/materials/cloth.fcl");
+  for (const std::vector<double>& x :
+       {std::vector<double>{0.2, 0.5, 3.0}, {0.05, 0.2, 8.0}, {0.9, 0.77, 6.1}})
+    check_max_shortcut(cloth, x);
+}
+
 }  // namespace
 }  // namespace neurocloth::fuzzy
