@@ -2,7 +2,8 @@
 // elasticity.medium's peak moved from 0.35 to 0.45, tuned back from the
 // original (spring_constant and viscosity named). One loss-and-gradient
 // evaluation, and a tuning of 20 iterations with the RMSE before and after
-// as counters (docs/learning.md, "Tuning a rule base from examples").
+// as counters (docs/learning.md, "Tuning a rule base from examples"). And
+// the engine's derivatives alone per example, by which seeds they carry.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -49,6 +50,37 @@ void BM_TuningLossAndGradient(benchmark::State& state) {
   state.counters["parameters"] = double(theta.size());
 }
 BENCHMARK(BM_TuningLossAndGradient)->Unit(benchmark::kMillisecond);
+
+// The engine alone over the same 50 examples (items/s: examples per second): infer(),
+// then infer_gradient() with every seed (102: 3 inputs, 99 parameters), with the
+// inputs and the parameters tune-rules tunes, and with the inputs only (what
+// FuzzyMaterial::sensitivity asks for).
+enum class Seeds { none, all, tuned, inputs };
+void BM_InferGradientPerExample(benchmark::State& state) {
+  const Seeds seeds = Seeds(state.range(0));
+  const RuleExamples e = examples();
+  const fuzzy::FuzzySystem s = cloth();
+  const std::vector<fuzzy::Parameter> wrt = seeds == Seeds::all ? fuzzy::parameters(s)
+                                            : seeds == Seeds::tuned
+                                                ? RuleTuning(s, e, {}).shape_parameters()
+                                                : std::vector<fuzzy::Parameter>{};
+  for (auto _ : state)
+    for (const auto& x : e.inputs) {
+      if (seeds == Seeds::none)
+        benchmark::DoNotOptimize(fuzzy::infer(s, x));
+      else
+        benchmark::DoNotOptimize(fuzzy::infer_gradient(s, x, wrt));
+    }
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(e.inputs.size()));
+  state.counters["seeds"] = seeds == Seeds::none ? 0.0 : double(s.inputs.size() + wrt.size());
+}
+BENCHMARK(BM_InferGradientPerExample)
+    ->ArgName("seeds")
+    ->Arg(int(Seeds::none))
+    ->Arg(int(Seeds::all))
+    ->Arg(int(Seeds::tuned))
+    ->Arg(int(Seeds::inputs))
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_TuneRules20Iterations(benchmark::State& state) {
   const RuleExamples e = examples();

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "asset_paths.h"
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/fcl_writer.h"
 #include "fuzzy_builders.h"
@@ -265,6 +266,122 @@ TEST(Inference, DerivativesMatchFiniteDifferences) {
   b.rules = {rule(is(0, 0, {Hedge::very}), 0, 0, 0.9), rule(is(0, 1, {Hedge::somewhat}), 0, 1)};
   smooth.blocks = {b};
   check_gradient(smooth, {0.45}, 1e-5);
+}
+
+// Derivatives with respect to chosen parameters are the matching columns of
+// the full ones, whichever order and subset is asked for; and all seeds carried
+// at once give what one seed at a time gives (each run then carries a single
+// derivative, so no two seeds' lists are ever merged: an independent check of
+// the sparse arithmetic in dual.h).
+bool same(double a, double b) {
+  return std::abs(a - b) <= 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300});
+}
+
+void check_seeds(const FuzzySystem& s, const std::vector<double>& x) {
+  const InferenceGradient full = infer_gradient(s, x);
+  const std::size_t np = full.parameters.size();
+  ASSERT_EQ(full.d_parameters.cols(), Eigen::Index(np));
+  // Every third parameter, last first.
+  std::vector<Parameter> some;
+  std::vector<std::size_t> column;
+  for (std::size_t k = np; k-- > 0;)
+    if (k % 3 == 1) some.push_back(full.parameters[k]), column.push_back(k);
+  const InferenceGradient part = infer_gradient(s, x, some);
+  const InferenceGradient inputs_only = infer_gradient(s, x, {});
+  ASSERT_EQ(part.d_parameters.cols(), Eigen::Index(some.size()));
+  EXPECT_EQ(inputs_only.d_parameters.cols(), 0);
+  for (Eigen::Index o = 0; o < full.d_inputs.rows(); ++o) {
+    EXPECT_EQ(part.report.outputs[o], full.report.outputs[o]);
+    for (Eigen::Index i = 0; i < full.d_inputs.cols(); ++i) {
+      EXPECT_PRED2(same, part.d_inputs(o, i), full.d_inputs(o, i)) << "output " << o;
+      EXPECT_PRED2(same, inputs_only.d_inputs(o, i), full.d_inputs(o, i)) << "output " << o;
+    }
+    for (std::size_t j = 0; j < some.size(); ++j)
+      EXPECT_PRED2(same, part.d_parameters(o, Eigen::Index(j)),
+                   full.d_parameters(o, Eigen::Index(column[j])))
+          << some[j].name;
+  }
+  double largest = 0;  // the comparison means something only if derivatives are nonzero
+  for (std::size_t k = 0; k < np; ++k) {
+    const InferenceGradient one = infer_gradient(s, x, {full.parameters[k]});
+    for (Eigen::Index o = 0; o < full.d_inputs.rows(); ++o) {
+      EXPECT_PRED2(same, one.d_parameters(o, 0), full.d_parameters(o, Eigen::Index(k)))
+          << full.parameters[k].name << " output " << o;
+      largest = std::max(largest, std::abs(one.d_parameters(o, 0)));
+    }
+  }
+  EXPECT_GT(largest, 0.0);
+}
+
+TEST(Inference, ChosenSeedsGiveTheSameDerivativesAsAllSeeds) {
+  for (Activation act : {Activation::min, Activation::product})
+    check_seeds(two_rule_mamdani(act), {2.7});
+  check_seeds(sugeno(), {3.3});
+  const FuzzySystem cloth = read_fcl(assets_directory() + "/materials/cloth.fcl");
+  for (const std::vector<double>& x :
+       {std::vector<double>{0.2, 0.5, 3.0}, {0.05, 0.2, 8.0}, {0.9, 0.77, 6.1}})
+    check_seeds(cloth, x);
+}
+
+TEST(Inference, GradientRefusesUnknownAndRepeatedParameters) {
+  const FuzzySystem s = sugeno();
+  const Parameter p = parameters(s)[0];
+  EXPECT_THROW(infer_gradient(s, {3.3}, {p, p}), std::invalid_argument);
+  Parameter missing = p;
+  missing.term = 7;
+  EXPECT_THROW(infer_gradient(s, {3.3}, {missing}), std::invalid_argument);
+}
+
+// Under ACCU MAX the engine finds the winning implied set on plain numbers
+// and differentiates only it. Checked against the max taken over duals: the
+// same system with one more block, ACCU SUM, whose rule cannot fire (its input
+// sits where its term is flat at 0) takes the general path, and adding its
+// zero changes no value and no derivative.
+FuzzySystem with_idle_sum_block(FuzzySystem s) {
+  s.inputs.push_back(variable("idle", 0, 10, {{"far", mf(Shape::triangle, {5, 6, 7})}}));
+  RuleBlock idle;
+  idle.name = "idle";
+  idle.accumulation = Accumulation::sum;
+  idle.activation = s.blocks[0].activation;
+  for (std::size_t o = 0; o < s.outputs.size(); ++o)
+    if (s.outputs[o].method == Defuzzification::centroid)
+      idle.rules.push_back(rule(is(int(s.inputs.size()) - 1, 0), int(o), 0));
+  s.blocks.push_back(idle);
+  return s;
+}
+
+void check_max_shortcut(const FuzzySystem& s, std::vector<double> x) {
+  const std::vector<Parameter> wrt = parameters(s);
+  const InferenceGradient shortcut = infer_gradient(s, x, wrt);
+  x.push_back(1.0);  // "idle" is 0 there, with no slope
+  const InferenceGradient general = infer_gradient(with_idle_sum_block(s), x, wrt);
+  double largest = 0;
+  for (Eigen::Index o = 0; o < shortcut.d_inputs.rows(); ++o) {
+    EXPECT_EQ(general.report.outputs[o], shortcut.report.outputs[o]);
+    for (Eigen::Index i = 0; i < shortcut.d_inputs.cols(); ++i)
+      EXPECT_PRED2(same, general.d_inputs(o, i), shortcut.d_inputs(o, i)) << "output " << o;
+    for (std::size_t k = 0; k < wrt.size(); ++k) {
+      EXPECT_PRED2(same, general.d_parameters(o, Eigen::Index(k)),
+                   shortcut.d_parameters(o, Eigen::Index(k)))
+          << wrt[k].name << " output " << o;
+      largest = std::max(largest, std::abs(shortcut.d_parameters(o, Eigen::Index(k))));
+    }
+  }
+  EXPECT_GT(largest, 0.0);
+}
+
+TEST(Inference, AccuMaxShortcutEqualsTheMaxOverDuals) {
+  for (Activation act : {Activation::min, Activation::product})
+    check_max_shortcut(two_rule_mamdani(act), {2.7});
+  // Sampled: a consequent hedge makes the output set curved.
+  FuzzySystem hedged = two_rule_mamdani(Activation::min);
+  hedged.blocks[0].rules[1].consequents[0].hedges = {Hedge::very};
+  check_max_shortcut(hedged, {3.1});
+  // cloth.fcl: spring_constant sampled ("very low"), viscosity and friction exact.
+  const FuzzySystem cloth = read_fcl(assets_directory() + "/materials/cloth.fcl");
+  for (const std::vector<double>& x :
+       {std::vector<double>{0.2, 0.5, 3.0}, {0.05, 0.2, 8.0}, {0.9, 0.77, 6.1}})
+    check_max_shortcut(cloth, x);
 }
 
 }  // namespace

@@ -146,7 +146,9 @@ DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& input
 MaterialSensitivity FuzzyMaterial::sensitivity(const std::map<std::string, double>& inputs,
                                                const std::string& where,
                                                const std::string& field) const {
-  fuzzy::InferenceGradient g = fuzzy::infer_gradient(system_, input_vector(inputs, where, field));
+  // Seeded with the inputs only: the material's parameters are not asked for.
+  fuzzy::InferenceGradient g =
+      fuzzy::infer_gradient(system_, input_vector(inputs, where, field), {});
   MaterialSensitivity s;
   s.derived.report = std::move(g.report);
   s.derived.material = material_from(s.derived.report.outputs);

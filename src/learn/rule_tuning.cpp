@@ -123,13 +123,11 @@ RuleTuning::RuleTuning(const FuzzySystem& system, const RuleExamples& examples,
     const auto idx = tunable_indices(var.terms[p.term].function);
     if (shape && std::find(idx.begin(), idx.end(), p.index) != idx.end()) {
       shapes_.push_back(p);
-      shape_columns_.push_back(int(c));
       shape_scale_.push_back(var.max - var.min);
     }
     if (!input && std::find(r.consequent.begin(), r.consequent.end(),
                             std::pair<int, int>{p.variable, p.term}) != r.consequent.end()) {
       consequents_.push_back(p);
-      consequent_columns_.push_back(int(c));
     }
   }
   for (int o : examples.outputs)
@@ -190,12 +188,12 @@ void RuleTuning::solve_consequents(FuzzySystem& s) const {
     b[k].setZero(n);
   }
   for (Eigen::Index e = 0; e < n; ++e) {
-    const fuzzy::InferenceGradient g = fuzzy::infer_gradient(s, examples_.inputs[e]);
+    const fuzzy::InferenceGradient g = fuzzy::infer_gradient(s, examples_.inputs[e], consequents_);
     for (std::size_t k = 0; k < examples_.outputs.size(); ++k) {
       const int o = examples_.outputs[k];
       b[k][e] = examples_.targets[e][k] - g.report.outputs[o];
       for (std::size_t c = 0; c < cols[k].size(); ++c)
-        a[k](e, Eigen::Index(c)) = g.d_parameters(o, consequent_columns_[cols[k][c]]);
+        a[k](e, Eigen::Index(c)) = g.d_parameters(o, Eigen::Index(cols[k][c]));
     }
   }
   for (std::size_t k = 0; k < examples_.outputs.size(); ++k) {
@@ -227,7 +225,7 @@ double RuleTuning::loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient)
     const bool derive = gradient && !shapes_.empty();
     fuzzy::InferenceGradient g;
     if (derive)
-      g = fuzzy::infer_gradient(s, examples_.inputs[e]);
+      g = fuzzy::infer_gradient(s, examples_.inputs[e], shapes_);
     else
       g.report = fuzzy::infer(s, examples_.inputs[e]);
     for (std::size_t k = 0; k < k_count; ++k) {
@@ -237,7 +235,7 @@ double RuleTuning::loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient)
       if (!derive) continue;
       for (std::size_t j = 0; j < shapes_.size(); ++j)
         (*gradient)[Eigen::Index(j)] +=
-            2 * r / output_range_[k] * g.d_parameters(o, shape_columns_[j]) * shape_scale_[j];
+            2 * r / output_range_[k] * g.d_parameters(o, Eigen::Index(j)) * shape_scale_[j];
     }
   }
   if (gradient) *gradient *= scale;

@@ -80,9 +80,8 @@ class RuleTuning {
   fuzzy::FuzzySystem start_;
   const RuleExamples& examples_;
   std::vector<fuzzy::Parameter> shapes_, consequents_;
-  std::vector<int> shape_columns_, consequent_columns_;  // in infer_gradient's d_parameters
-  std::vector<double> shape_scale_;                      // each shape parameter's variable range
-  std::vector<double> output_range_;                     // per named output
+  std::vector<double> shape_scale_;   // each shape parameter's variable range
+  std::vector<double> output_range_;  // per named output
   TermConstraints constraints_;
   std::size_t needed_ = 0;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "dual.h"
 
@@ -110,21 +111,41 @@ T implied(const Contribution<T>& c, const MembershipFunction& f, const std::vect
   return c.act == Activation::min ? tmin(c.alpha, m) : c.alpha * m;
 }
 
+// A consequent's set at y, as a double (for locating the pieces).
+template <class T>
+double shaped(const Contribution<T>& c, const MembershipFunction& f, double y) {
+  return modified(f(y), c.consequent->hedges, c.consequent->negated);
+}
+
 template <class T>
 T aggregate(const std::vector<Contribution<T>>& cs, const LinguisticVariable& v,
             const std::vector<std::vector<T>>& p, const T& y) {
+  const bool all_max = std::all_of(
+      cs.begin(), cs.end(), [](const Contribution<T>& c) { return c.accu == Accumulation::max; });
+  if (all_max) {
+    // ACCU MAX keeps one implied set's value: find which on plain numbers (the
+    // same values and comparisons as below), then evaluate only that one in T.
+    // Same result and derivatives as taking the max in T over every set, but a
+    // sampled centroid calls this 20001 times per output.
+    int winner = -1;
+    double best = 0.0;
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      const double alpha = value(cs[i].alpha);
+      const double m = shaped(cs[i], v.terms[cs[i].term].function, value(y));
+      const double implied = cs[i].act == Activation::min ? std::min(alpha, m) : alpha * m;
+      if (best < implied) best = implied, winner = int(i);
+    }
+    if constexpr (std::is_same_v<T, double>) return best;
+    if (winner < 0) return T(0.0);
+    const Contribution<T>& c = cs[std::size_t(winner)];
+    return implied(c, v.terms[c.term].function, p[c.term], y);
+  }
   T a(0.0);
   for (const auto& c : cs) {
     const T m = implied(c, v.terms[c.term].function, p[c.term], y);
     a = c.accu == Accumulation::max ? tmax(a, m) : a + m;
   }
   return a;
-}
-
-// A consequent's set at y, as a double (for locating the pieces).
-template <class T>
-double shaped(const Contribution<T>& c, const MembershipFunction& f, double y) {
-  return modified(f(y), c.consequent->hedges, c.consequent->negated);
 }
 
 // Values of f at the ends of [x0, x0 + h], extrapolated from its interior:
@@ -196,6 +217,19 @@ std::vector<double> linear_pieces(const std::vector<Contribution<T>>& cs,
   return pts;
 }
 
+// sum of c * a over a centroid's samples (for duals, DualSum in dual.h).
+template <class T>
+class WeightedSum {
+ public:
+  void add(double c, const T& a) { total_ += c * a; }
+  T total() const { return total_; }
+
+ private:
+  T total_ = 0.0;
+};
+template <>
+class WeightedSum<Dual> : public DualSum {};
+
 // (integral of mu, integral of y mu) over the output's range.
 template <class T>
 std::pair<T, T> moments(const std::vector<Contribution<T>>& cs, const LinguisticVariable& v,
@@ -219,14 +253,15 @@ std::pair<T, T> moments(const std::vector<Contribution<T>>& cs, const Linguistic
     return {area, moment};
   }
   const double h = (v.max - v.min) / kCentroidSamples;
+  WeightedSum<T> sampled_area, sampled_moment;
   for (int i = 0; i <= kCentroidSamples; ++i) {
     const double y = i == kCentroidSamples ? v.max : v.min + i * h;
-    const T w = (i == 0 || i == kCentroidSamples) ? T(0.5 * h) : T(h);
+    const double w = (i == 0 || i == kCentroidSamples) ? 0.5 * h : h;
     const T a = aggregate(cs, v, p, T(y));
-    area += w * a;
-    moment += w * T(y) * a;
+    sampled_area.add(w, a);
+    sampled_moment.add(w * y, a);
   }
-  return {area, moment};
+  return {sampled_area.total(), sampled_moment.total()};
 }
 
 // Takagi-Sugeno: activations (accumulated per term) weighting each term's value.
@@ -311,6 +346,25 @@ std::vector<T> run(const FuzzySystem& s, const std::vector<T>& raw_inputs, const
   return y;
 }
 
+// Where parameter q lives in p; null when the system has no such parameter.
+template <class T>
+T* slot(Params<T>& p, const Parameter& q) {
+  auto at = [](auto& v, int i) { return i >= 0 && std::size_t(i) < v.size() ? &v[i] : nullptr; };
+  switch (q.kind) {
+    case Parameter::Kind::input_term:
+    case Parameter::Kind::output_term: {
+      auto* var = at(q.kind == Parameter::Kind::input_term ? p.in : p.out, q.variable);
+      auto* term = var ? at(*var, q.term) : nullptr;
+      return term ? at(*term, q.index) : nullptr;
+    }
+    case Parameter::Kind::rule_weight: {
+      auto* block = at(p.weight, q.variable);
+      return block ? at(*block, q.term) : nullptr;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 InferenceReport infer(const FuzzySystem& s, const std::vector<double>& inputs) {
@@ -368,32 +422,39 @@ void set_parameter(FuzzySystem& s, const Parameter& p, double value) {
 }
 
 InferenceGradient infer_gradient(const FuzzySystem& s, const std::vector<double>& inputs) {
+  return infer_gradient(s, inputs, parameters(s));
+}
+
+InferenceGradient infer_gradient(const FuzzySystem& s, const std::vector<double>& inputs,
+                                 const std::vector<Parameter>& wrt) {
   if (inputs.size() != s.inputs.size())
     throw std::invalid_argument("expected " + std::to_string(s.inputs.size()) + " inputs, got " +
                                 std::to_string(inputs.size()));
   InferenceGradient g;
-  g.parameters = parameters(s);
-  const std::size_t ni = inputs.size(), np = g.parameters.size(), seeds = ni + np;
+  g.parameters = wrt;
+  // Seeds: the inputs, then wrt in its order.
+  const std::size_t ni = inputs.size(), np = wrt.size();
   std::vector<Dual> x;
   for (std::size_t i = 0; i < ni; ++i)
-    x.emplace_back(inputs[i], seeds, i);
+    x.emplace_back(inputs[i], std::uint32_t(i));
   Params<Dual> p = constant_params<Dual>(s);
   for (std::size_t k = 0; k < np; ++k) {
-    const Parameter& q = g.parameters[k];
-    Dual& d = q.kind == Parameter::Kind::input_term    ? p.in[q.variable][q.term][q.index]
-              : q.kind == Parameter::Kind::output_term ? p.out[q.variable][q.term][q.index]
-                                                       : p.weight[q.variable][q.term];
-    d = Dual(d.v, seeds, ni + k);
+    const Parameter& q = wrt[k];
+    Dual* d = slot(p, q);
+    if (!d) throw std::invalid_argument("no parameter " + q.name + " in " + s.name);
+    if (!d->d.empty()) throw std::invalid_argument("parameter " + q.name + " asked for twice");
+    *d = Dual(d->v, std::uint32_t(ni + k));
   }
   const std::vector<Dual> y = run<Dual>(s, x, p, g.report);
-  g.d_inputs.resize(y.size(), ni);
-  g.d_parameters.resize(y.size(), np);
-  for (std::size_t o = 0; o < y.size(); ++o) {
-    for (std::size_t i = 0; i < ni; ++i)
-      g.d_inputs(o, i) = y[o].derivative(i);
-    for (std::size_t k = 0; k < np; ++k)
-      g.d_parameters(o, k) = y[o].derivative(ni + k);
-  }
+  g.d_inputs.setZero(Eigen::Index(y.size()), Eigen::Index(ni));
+  g.d_parameters.setZero(Eigen::Index(y.size()), Eigen::Index(np));
+  for (std::size_t o = 0; o < y.size(); ++o)
+    for (const auto& e : y[o].d) {
+      if (e.seed < ni)
+        g.d_inputs(Eigen::Index(o), Eigen::Index(e.seed)) = e.d;
+      else
+        g.d_parameters(Eigen::Index(o), Eigen::Index(e.seed - ni)) = e.d;
+    }
   return g;
 }
 

@@ -54,9 +54,19 @@ struct InferenceGradient {
   Eigen::MatrixXd d_parameters;  // outputs x parameters
 };
 
-// Exact derivatives of every output (forward mode, same code as infer()). Where
-// a min, max or clamp picks one branch the derivative is that branch's; at a
-// kink it is one-sided.
+// Exact derivatives of every output (forward mode, same code as infer()) with
+// respect to the inputs and every parameter (parameters(system)). Where a min,
+// max or clamp picks one branch the derivative is that branch's; at a kink it
+// is one-sided.
 InferenceGradient infer_gradient(const FuzzySystem& system, const std::vector<double>& inputs);
+
+// The same with respect to the inputs and `wrt` only (d_parameters has one
+// column per entry of wrt, in its order; the numbers are those of the matching
+// columns above). Cheaper when wrt is short: a derivative is carried only for
+// what is asked, e.g. the tuned parameters, or none (wrt empty) for the inputs.
+// Throws std::invalid_argument for a parameter the system does not have or
+// one given twice.
+InferenceGradient infer_gradient(const FuzzySystem& system, const std::vector<double>& inputs,
+                                 const std::vector<Parameter>& wrt);
 
 }  // namespace neurocloth::fuzzy
