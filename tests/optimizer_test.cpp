@@ -242,6 +242,42 @@ TEST(Optimizer, StallsWhenTheLossStopsFallingRelativeToItsSize) {
   }
 }
 
+// Two valleys, (x - 2)^2 (x + 1)^2 + x: the deeper one near x = -1. From
+// x = 3 a descent ends in the shallower valley near 2; with a second start at
+// -3 the search keeps the deeper, numbers its iterations on and says which
+// start won.
+TEST(Optimizer, SeveralStartsKeepTheLowestValley) {
+  const Objective f = [](const VectorXd& x, VectorXd* g) {
+    const double a = x[0] - 2, b = x[0] + 1;
+    if (g) *g = VectorXd::Constant(1, 2 * a * b * b + 2 * a * a * b + 1);
+    return a * a * b * b + x[0];
+  };
+  OptimizerOptions o;
+  o.max_iterations = 50;
+  const OptimizerResult one = minimize(f, VectorXd::Constant(1, 3.0), o);
+  EXPECT_GT(one.best_theta[0], 1.5);
+  std::vector<int> seen;
+  const OptimizerResult two =
+      minimize_from(f, {VectorXd::Constant(1, 3.0), VectorXd::Constant(1, -3.0)}, o,
+                    [&](const IterationInfo& it) {
+                      seen.push_back(it.iteration);
+                      return true;
+                    });
+  EXPECT_LT(two.best_theta[0], -0.5);
+  EXPECT_LT(two.best_loss, one.best_loss);
+  EXPECT_NE(two.message.find("start 2 of 2"), std::string::npos) << two.message;
+  for (std::size_t i = 1; i < seen.size(); ++i)
+    EXPECT_EQ(seen[i], seen[i - 1] + 1);  // numbered on across the runs
+  EXPECT_EQ(two.iterations, seen.back());
+  // A stop that ends the search ends it: the second start never runs.
+  int calls = 0;
+  const OptimizerResult cut =
+      minimize_from(f, {VectorXd::Constant(1, 3.0), VectorXd::Constant(1, -3.0)}, o,
+                    [&](const IterationInfo&) { return ++calls < 3; });
+  EXPECT_EQ(cut.reason, StopReason::stopped);
+  EXPECT_GT(cut.best_theta[0], 1.5);
+}
+
 TEST(Optimizer, ParsesItsMethodNames) {
   OptimizerMethod m{};
   EXPECT_TRUE(parse_optimizer_method("gd", m));

@@ -11,6 +11,7 @@
 #include "fit_problem.h"
 #include "fitted_output.h"
 #include "input_error.h"
+#include "input_starts.h"
 #include "loglog_chart.h"
 #include "long_run.h"
 #include "motion_outputs.h"
@@ -223,8 +224,10 @@ int run_fit(const FitOptions& o) {
   ProgressLine progress(o.max_iterations, o.time_budget);
   const InterruptScope ctrl_c;
   opt.should_stop = [] { return InterruptScope::interrupted(); };
+  const InputStarts starts = input_fit_starts(problem);
+  if (!starts.said.empty()) std::printf("%s\n", starts.said.c_str());
   const OptimizerResult result =
-      minimize(objective, problem.initial(), opt, [&](const IterationInfo& it) {
+      minimize_from(objective, starts.starts, opt, [&](const IterationInfo& it) {
         const Eigen::VectorXd theta = problem.inside_limits(it.theta);
         FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, theta), it.seconds, {}};
         for (const Column& c : columns)

@@ -339,6 +339,14 @@ std::vector<std::string> FitProblem::inputs_in_words(const Eigen::VectorXd& thet
   return words;
 }
 
+const fuzzy::LinguisticVariable* FitProblem::input_variable(const FitBlock& block) const {
+  for (const Unknown& u : impl_->unknowns)
+    if (u.target == Target::input && u.block.offset == block.offset)
+      return &impl_->scene.fuzzy_material->rules->system()
+                  .inputs[static_cast<std::size_t>(u.input)];
+  return nullptr;
+}
+
 MaterialWeights FitProblem::element_weights(const Eigen::VectorXd& theta) const {
   // Every weight, also for a family fit: the side file is written only when
   // they differ from what FITTED.json's material builds (fitted_output.h), as

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "fuzzy/linguistic_variable.h"
 #include "reference_motion.h"
 #include "scene.h"
 
@@ -105,6 +106,8 @@ class FitProblem {
   // the rule base's words, "elasticity 0.712: big 0.80, medium 0.20"; empty
   // for other fits.
   std::vector<std::string> inputs_in_words(const Eigen::VectorXd& theta) const;
+  // The rule base's variable a block of theta fits (input.NAME), or null.
+  const fuzzy::LinguisticVariable* input_variable(const FitBlock& block) const;
   // Every weight of the network the fit runs at theta (network order): the
   // side file holds them when fitted_scene's material alone does not build them.
   MaterialWeights element_weights(const Eigen::VectorXd& theta) const;

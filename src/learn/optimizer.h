@@ -98,6 +98,16 @@ struct OptimizerResult {
 OptimizerResult minimize(const Objective& objective, const Eigen::VectorXd& start,
                          const OptimizerOptions& options, const IterationCallback& callback = {});
 
+// minimize() from each start in turn, for objectives with plateaus or several
+// minima (a rule base's MIN and MAX), keeping the lowest loss of all: the
+// callback sees the iterations numbered on across the runs, the time budget
+// is shared, and a stop that ends the search rather than a run (Ctrl-C, the
+// time budget) ends them all. The result's message says which start won.
+OptimizerResult minimize_from(const Objective& objective,
+                              const std::vector<Eigen::VectorXd>& starts,
+                              const OptimizerOptions& options,
+                              const IterationCallback& callback = {});
+
 // Maps any theta onto a closed convex set (need not be the exact Euclidean
 // projection, but must leave points of the set where they are).
 using Projection = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <exception>
 
+#include "input_starts.h"
+
 namespace neurocloth {
 
 namespace {
@@ -185,15 +187,15 @@ void FitWorker::run_batch(FitProblem& problem, const FitJob& job) {
   options.should_stop = [this] { return stop_.load(); };
   const double observations = std::max(1.0, double(problem.observations()));
   const OptimizerResult result =
-      minimize([&](const Eigen::VectorXd& theta,
-                   Eigen::VectorXd* gradient) { return problem.loss(theta, gradient); },
-               problem.initial(), options,
-               [&](const IterationInfo& it) {
-                 if (std::isfinite(it.loss))
-                   publish_row(problem, *job.scene, it.theta, it.loss,
-                               std::sqrt(2 * it.loss / observations), it.iteration, 0);
-                 return true;
-               });
+      minimize_from([&](const Eigen::VectorXd& theta,
+                        Eigen::VectorXd* gradient) { return problem.loss(theta, gradient); },
+                    input_fit_starts(problem).starts, options,
+                    [&](const IterationInfo& it) {
+                      if (std::isfinite(it.loss))
+                        publish_row(problem, *job.scene, it.theta, it.loss,
+                                    std::sqrt(2 * it.loss / observations), it.iteration, 0);
+                      return true;
+                    });
   if (!std::isfinite(result.best_loss)) {
     finish(FitProgress::State::failed,
            "the scene's own parameters give a loss that is not finite (the run diverges): " +
