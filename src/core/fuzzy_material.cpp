@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "asset_paths.h"
-#include "fuzzy/fcl_reader.h"
+#include "fuzzy/rule_file.h"
 #include "input_error.h"
 #include "linguistic_material_json.h"
 #include "text_file.h"
@@ -71,8 +71,8 @@ FuzzyMaterial::FuzzyMaterial(fuzzy::FuzzySystem system, std::string source)
   }
 }
 
-FuzzyMaterial FuzzyMaterial::load(const std::string& fcl_path) {
-  return FuzzyMaterial(fuzzy::read_fcl(fcl_path), fcl_path);
+FuzzyMaterial FuzzyMaterial::load(const std::string& path) {
+  return FuzzyMaterial(fuzzy::read_rule_file(path), path);
 }
 
 DerivedMaterial FuzzyMaterial::derive(const std::map<std::string, double>& inputs,

@@ -4,6 +4,7 @@
 // FUZZIFY / DEFUZZIFY blocks; fcl_rule_parser.cpp the RULEBLOCKs and their rules.
 #include <array>
 #include <cstdio>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,23 @@ struct VariableBlock {
   std::vector<Pos> term_at;
   bool has_range = false, has_method = false, has_default = false;
   Pos method_at;
+  // fuzzylite: ACCU inside DEFUZZIFY (NONE: each rule on its own) and LOCK : RANGE.
+  bool has_accu = false, accu_none = false, lock_range = false;
+  Accumulation accu = Accumulation::max;
+  Pos accu_at, lock_at;
+};
+
+// What a DEFUZZIFY block said about accumulation, kept until the rule blocks
+// are read (fcl_dialect.cpp, resolve_accumulation).
+struct OutputNote {
+  bool has_accu = false;
+  Accumulation accu = Accumulation::max;
+  Pos at;  // its ACCU, or its name when it has none
+};
+
+struct BlockNote {
+  bool has_accu = false;
+  std::string field;  // "RULEBLOCK name"
 };
 
 // Where a declared variable was declared and (once read) defined.
@@ -78,6 +96,20 @@ class Parser : Cursor {
   void infer_range(VariableBlock& b);
   void check_method(const VariableBlock& b);
 
+  // fcl_dialect.cpp: other tools' names and statements.
+  int norm(int which, bool none_allowed = false);  // 0/1: the setting's methods; -1: NONE
+  Defuzzification defuzzifier();
+  MembershipFunction foreign_term(const std::string& expected);
+  void height(const Token& head);
+  MembershipFunction foreign_linear(const Token& head, double first);
+  MembershipFunction discrete(const Token& head);
+  MembershipFunction ramp(const Token& head);
+  void enabled();
+  void lock(VariableBlock& b);
+  void output_accumulation(VariableBlock& b);
+  void check_pairing(const RuleBlock& rb, const std::array<bool, 4>& given);
+  void resolve_accumulation();
+
   // fcl_rule_parser.cpp: RULEBLOCK and its rules.
   void rule_block();
   bool setting(RuleBlock& rb, std::array<bool, 4>& given);
@@ -111,6 +143,10 @@ class Parser : Cursor {
   int depth_ = 0;                                 // of the condition being read
   std::vector<Slot> input_slots_, output_slots_;  // parallel to system_.inputs / outputs
   FuzzySystem system_;
+  std::vector<OutputNote> output_notes_;  // parallel to system_.outputs
+  std::vector<BlockNote> block_notes_;    // parallel to system_.blocks
+  std::array<Pos, 4> setting_at_{};       // AND, OR, ACT, ACCU of the block being read
+  bool unterminated_rules_ = false;       // a RULE without ';' (fuzzylite)
 };
 
 }  // namespace neurocloth::fuzzy::fcl

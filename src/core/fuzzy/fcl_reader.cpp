@@ -10,21 +10,6 @@
 
 namespace neurocloth::fuzzy {
 namespace fcl {
-namespace {
-
-// The parameters that are positions on the variable's axis (checked against
-// RANGE, and what RANGE is inferred from when absent).
-std::vector<double> x_positions(const MembershipFunction& f) {
-  const auto& p = f.params;
-  if (f.shape == Shape::points) return f.breakpoints();
-  if (f.shape == Shape::gaussian) return {p[0]};  // mean
-  if (f.shape == Shape::bell) return {p[2]};      // centre c
-  if (f.shape == Shape::sigmoid) return {p[1]};   // centre
-  if (f.shape == Shape::linear) return {};
-  return p;  // trian, trape, singleton: every parameter
-}
-
-}  // namespace
 
 void Parser::function_block() {
   const Token head = expect_keyword("FUNCTION_BLOCK", "FUNCTION_BLOCK");
@@ -48,6 +33,9 @@ void Parser::function_block() {
   for (const RuleBlock& b : system_.blocks)
     rules += b.rules.size();
   if (rules == 0) fail("the function block has no rules (a RULEBLOCK with a RULE)", where(head));
+  resolve_accumulation();
+  field_ = outer_field_;
+
   if (peek().kind != TokenKind::end)
     fail("expected end of file after END_FUNCTION_BLOCK (one function block per file), got '" +
              peek().text + "'",
@@ -93,6 +81,7 @@ void Parser::declarations(bool input) {
     LinguisticVariable v;
     v.name = name.text;
     (input ? system_.inputs : system_.outputs).push_back(std::move(v));
+    if (!input) output_notes_.emplace_back();
     (input ? input_slots_ : output_slots_).push_back({where(name), {}, false});
   }
   close();
@@ -122,6 +111,13 @@ void Parser::variable_block(bool output) {
       method(b);
     else if (output && at_keyword("DEFAULT"))
       default_value(b);
+    else if (output && at_keyword("ACCU"))
+      output_accumulation(b);
+    else if (output && at_keyword("LOCK"))
+      lock(b);
+    else if (at_keyword("ENABLED"))
+      enabled();
+
     else
       unexpected(output ? "TERM, RANGE, METHOD, DEFAULT or END_DEFUZZIFY"
                         : "TERM, RANGE or END_FUZZIFY");
@@ -129,6 +125,9 @@ void Parser::variable_block(bool output) {
   finish(b);
   close();
   const int i = output ? system_.output_index(name.text) : system_.input_index(name.text);
+  if (output)
+    output_notes_[static_cast<std::size_t>(i)] = {b.has_accu, b.accu,
+                                                  b.has_accu ? b.accu_at : b.at};
   (output ? system_.outputs : system_.inputs)[static_cast<std::size_t>(i)] = std::move(b.variable);
 }
 
@@ -184,10 +183,11 @@ MembershipFunction Parser::membership(const VariableBlock& b) {
   for (Shape s : {Shape::triangle, Shape::trapezoid, Shape::gaussian, Shape::bell, Shape::sigmoid,
                   Shape::singleton, Shape::linear})
     if (at_keyword(to_string(s))) f.shape = s;
+  // Not ours: another tool's class name (fcl_dialect.cpp), or an error.
   if (f.shape == Shape::points)
-    unexpected(
-        "a membership function (a number, '(x, y) ...', trian, trape, gauss, gbell, sigm, "
-        "singleton or linear)");
+    return foreign_term(
+        "a membership function (a number, '(x, y) ...', trian, trape, gauss, "
+        "gbell, sigm, singleton or linear)");
   const Token head = take();
   if (f.shape == Shape::linear) return linear(b, head);
   const int n = parameter_count(f.shape);
@@ -214,6 +214,10 @@ MembershipFunction Parser::linear(const VariableBlock& b, const Token& head) {
     fail("linear terms are Takagi-Sugeno consequents, allowed only in DEFUZZIFY", where(head));
   MembershipFunction f{Shape::linear, std::vector<double>(1 + system_.inputs.size(), 0.0)};
   f.params[0] = expect_number("the constant c0 after linear");
+  // fuzzylite's "Linear a1 .. an c": numbers only (fcl_dialect.cpp). Ours names
+  // each input; a lone number is ours unless spelt as fuzzylite's class.
+  if (peek().kind == TokenKind::number || (head.text == "Linear" && !at_name()))
+    return foreign_linear(head, f.params[0]);
   std::vector<char> named(system_.inputs.size(), 0);
   while (at_name()) {
     const Token input = take();
@@ -235,20 +239,22 @@ void Parser::method(VariableBlock& b) {
   once(b.has_method, head);
   b.method_at = where(head);
   expect_symbol(":", "':' after METHOD");
-  const bool cogs = at_keyword("COGS");
-  if (!cogs && !at_keyword("COG"))
-    unexpected("COG or COGS (the supported defuzzification methods)");
-  take();
-  b.variable.method = cogs ? Defuzzification::weighted_average : Defuzzification::centroid;
+  b.variable.method = defuzzifier();
+
   expect_symbol(";", "';' after METHOD");
 }
 
 void Parser::default_value(VariableBlock& b) {
   once(b.has_default, take());
   expect_symbol(":=", "':=' after DEFAULT");
-  b.variable.default_value = accept_keyword("NC")
+  // fuzzylite writes "nan" for "none given" and "| NC" for "keep the previous
+  // value", which a one-shot inference reads as its first evaluation does:
+  // the DEFAULT (docs/fcl.md).
+  b.variable.default_value = accept_keyword("NC") || accept_keyword("NAN")
                                  ? std::numeric_limits<double>::quiet_NaN()
                                  : expect_number("a number or NC after DEFAULT :=");
+  if (accept_symbol("|")) expect_keyword("NC", "NC after '|'");
+
   expect_symbol(";", "';' after DEFAULT");
 }
 
@@ -258,20 +264,32 @@ void Parser::finish(VariableBlock& b) {
   if (v.terms.empty()) fail("'" + v.name + "' has no TERM", b.at);
   if (!b.has_range) infer_range(b);
   for (std::size_t i = 0; i < v.terms.size(); ++i)
-    for (double x : x_positions(v.terms[i].function))
+    for (double x : v.terms[i].function.axis_positions())
       if (x < v.min || x > v.max) {
         field_ = "TERM " + v.terms[i].name;
         fail("term out of range: x = " + show(x) + " lies outside the RANGE (" + show(v.min) +
                  " .. " + show(v.max) + ") of '" + v.name + "'",
              b.term_at[i]);
       }
-  if (b.output) check_method(b);
+  if (!b.output) return;
+  check_method(b);
+  const bool cogs = v.method == Defuzzification::weighted_average;
+  if (b.accu_none && !cogs)
+    fail("ACCU : NONE (fuzzylite: each rule's set on its own) has no centroid here; use MAX or SUM",
+         b.accu_at);
+  if (b.accu_none) b.accu = Accumulation::sum;  // a weighted average over every rule
+  if (b.lock_range)
+    for (const Term& t : v.terms)
+      if (t.function.shape == Shape::linear)
+        fail("LOCK : RANGE clamps the output, which a linear term can leave ('" + t.name +
+                 "'); this engine does not clamp outputs",
+             b.lock_at);
 }
 
 void Parser::infer_range(VariableBlock& b) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const Term& t : b.variable.terms)
-    for (double x : x_positions(t.function)) {
+    for (double x : t.function.axis_positions()) {
       lo = std::min(lo, x);
       hi = std::max(hi, x);
     }

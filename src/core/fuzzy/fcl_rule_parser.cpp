@@ -22,32 +22,32 @@ void Parser::rule_block() {
   while (!accept_keyword("END_RULEBLOCK")) {
     if (at_keyword("RULE"))
       rb.rules.push_back(rule(rb));
+    else if (at_keyword("ENABLED"))
+      enabled();
     else if (!setting(rb, given))
       unexpected("RULE, AND, OR, ACT, ACCU or END_RULEBLOCK");
   }
+  check_pairing(rb, given);
+  block_notes_.push_back({given[3], field_});
   close();
   system_.blocks.push_back(std::move(rb));
 }
 
-// AND : MIN; OR : MAX; ACT : MIN; ACCU : MAX; and their alternatives. False
-// when the next token starts none of them.
+// AND : MIN; OR : MAX; ACT : MIN; ACCU : MAX; and their alternatives (also by
+// fuzzylite's class names, fcl_dialect.cpp). False when the next token starts
+// none of them.
 bool Parser::setting(RuleBlock& rb, std::array<bool, 4>& given) {
-  static const char* const kSetting[4][3] = {{"AND", "MIN", "PROD"},
-                                             {"OR", "MAX", "ASUM"},
-                                             {"ACT", "MIN", "PROD"},
-                                             {"ACCU", "MAX", "SUM"}};
+  static const char* const kSetting[4] = {"AND", "OR", "ACT", "ACCU"};
   int which = -1;
   for (int i = 0; i < 4; ++i)
-    if (at_keyword(kSetting[i][0])) which = i;
+    if (at_keyword(kSetting[i])) which = i;
   if (which < 0) return false;
   const Token head = take();
   once(given[static_cast<std::size_t>(which)], head);
-  const std::string name = head.text, first = kSetting[which][1], second = kSetting[which][2];
+  setting_at_[static_cast<std::size_t>(which)] = where(head);
+  const std::string name = head.text;
   expect_symbol(":", "':' after " + name);
-  const bool alternative = at_keyword(second.c_str());
-  if (!alternative && !at_keyword(first.c_str()))
-    unexpected(first + " or " + second + " after " + name + " :");
-  take();
+  const bool alternative = norm(which) == 1;
   expect_symbol(";", "';' after the " + name + " method");
   if (which == 0) rb.and_method = alternative ? AndMethod::product : AndMethod::min;
   if (which == 1) rb.or_method = alternative ? OrMethod::probabilistic_sum : OrMethod::max;
@@ -72,9 +72,10 @@ Rule Parser::rule(const RuleBlock& rb) {
   expect_keyword("IF", "IF");
   r.condition = disjunction();
   expect_keyword("THEN", "THEN, AND or OR after the condition");
+  // fuzzylite joins consequents with "and".
   do
     r.consequents.push_back(consequent());
-  while (accept_symbol(","));
+  while (accept_symbol(",") || accept_keyword("AND"));
   const bool with = accept_keyword("WITH");
   if (with) {
     const Token weight = peek();
@@ -82,7 +83,11 @@ Rule Parser::rule(const RuleBlock& rb) {
     if (!(r.weight >= 0 && r.weight <= 1))
       fail("WITH weight must be in [0, 1], got " + weight.text, where(weight));
   }
-  expect_symbol(";", with ? "';' after the rule" : "',', WITH or ';' after the consequent");
+  // fuzzylite ends a rule with the line, without ';'.
+  if (at_keyword("RULE") || at_keyword("END_RULEBLOCK"))
+    unterminated_rules_ = true;
+  else
+    expect_symbol(";", with ? "';' after the rule" : "',', WITH or ';' after the consequent");
   field_ = block_field;
   return r;
 }
@@ -174,9 +179,14 @@ std::pair<int, int> Parser::lookup(const Token& variable, const Token& term, boo
   }
   const LinguisticVariable& var = own[static_cast<std::size_t>(v)];
   const int t = var.term_index(term.text);
-  if (t < 0)
+  if (t < 0) {
+    for (const char* hedge : {"any", "extremely", "seldom"})  // fuzzylite's other hedges
+      if (same_keyword(term.text, hedge) && at_name())
+        fail("hedge '" + term.text + "' is not supported: this engine has very and somewhat",
+             where(term));
     fail("unknown term '" + term.text + "' of '" + name + "' (its terms: " + names(var.terms) + ")",
          where(term));
+  }
   return {v, t};
 }
 }  // namespace neurocloth::fuzzy::fcl
