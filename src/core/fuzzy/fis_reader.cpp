@@ -4,6 +4,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <set>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -18,11 +19,9 @@ namespace {
 using fis::Entry;
 using fis::Section;
 
-// Caps on what the file's counts may ask for: far above any rule base a
-// person or a toolbox writes, far below what would exhaust memory or time.
-constexpr int kMaxVariables = 1000;
-constexpr int kMaxTerms = 1000;
-constexpr int kMaxRules = 100000;
+using fis::kMaxRules;
+using fis::kMaxTerms;
+using fis::kMaxVariables;
 
 // A rule's entry for one variable: which MF (1-based, 0 = none), NOT, and
 // Octave's hedge code in the fraction (.05 somewhat, .2 very).
@@ -98,7 +97,10 @@ class FisParser {
                                          "NumOutputs", "NumRules",  "AndMethod",   "OrMethod",
                                          "ImpMethod",  "AggMethod", "DefuzzMethod"};
     s.only(kKnown, path_);
-    if (const Entry* e = s.find("Name")) system_.name = fis::text(*e, s, path_);
+    if (const Entry* e = s.find("Name")) {
+      system_.name = fis::text(*e, s, path_);
+      if (!system_.name.empty()) fis::check_name(system_.name, s.title() + " Name", e->line, path_);
+    }
     if (const Entry* e = s.find("Version"))
       fis::number(e->value, s.title() + " Version", e->line, path_);
     const Entry& type = required(s, "Type");
@@ -183,6 +185,7 @@ class FisParser {
     v.max = r[1];
     const int n = count(s, "NumMFs", kMaxTerms);
     std::vector<const Entry*> mfs(static_cast<std::size_t>(n), nullptr);
+    names_.clear();
     for (const Entry& e : s.entries) {
       const int k = fis::mf_index(e.key);
       if (k < 0) continue;
@@ -209,7 +212,7 @@ class FisParser {
     const std::string field = title + " " + e.key;
     const fis::MfLine mf = fis::mf_line(e.value, field, e.line, path_, 2 + kMaxVariables);
     fis::check_name(mf.name, field, e.line, path_);
-    if (v.term_index(mf.name) >= 0)
+    if (!names_.insert(mf.name).second)
       fail(field, "duplicate membership function name '" + fis::shown(mf.name) + "'", e.line);
     Term t{mf.name, shape(mf, field, e.line, output)};
     const std::string problem = t.function.validate();
@@ -377,6 +380,7 @@ class FisParser {
 
   std::string path_;
   std::vector<Section> sections_;
+  std::set<std::string> names_;  // of the MFs of the variable being read
   FuzzySystem system_;
   bool sugeno_ = false;
   int num_inputs_ = 0, num_outputs_ = 0, num_rules_ = 0;

@@ -77,22 +77,23 @@ Section header(const std::string& line, int number, const std::string& path) {
     int index = 0;
     const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), index);
     if (r.ec == std::errc() && r.ptr == digits.data() + digits.size() && index >= 1 &&
-        digits[0] != '+') {
+        index <= kMaxVariables && digits[0] != '+') {
       s.kind = kind;
       s.index = index;
       return s;
     }
   }
   fail(path, "[" + shown(name) + "]",
-       "unknown section (expected [System], [Input<n>], [Output<n>] or [Rules])", number);
+       "unknown section (expected [System], [Input<n>], [Output<n>] or [Rules], n from 1 to " +
+           std::to_string(kMaxVariables) + ")",
+       number);
 }
 
 }  // namespace
 
 const Entry* Section::find(const std::string& key) const {
-  for (const Entry& e : entries)
-    if (e.key == key) return &e;
-  return nullptr;
+  const auto it = by_key.find(key);
+  return it == by_key.end() ? nullptr : &entries[it->second];
 }
 
 void Section::only(const char* const* known, std::size_t n, const std::string& path) const {
@@ -140,6 +141,7 @@ std::vector<Section> split_sections(const std::string& text, const std::string& 
       fail(path, s.title() + " " + shown(e.key),
            e.key + " given twice (the first is at line " + std::to_string(first->line) + ")",
            number);
+    s.by_key.emplace(e.key, s.entries.size());
     s.entries.push_back(std::move(e));
   }
   return sections;

@@ -4,10 +4,18 @@
 // fis_reader.cpp gives them meaning. Every helper throws InputError naming the
 // file, line and field it was given.
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace neurocloth::fuzzy::fis {
+
+// Caps on what a file's counts and section numbers may ask for: far above any
+// rule base a person or a toolbox writes, far below what would exhaust memory
+// or time.
+inline constexpr int kMaxVariables = 1000;  // inputs, and outputs
+inline constexpr int kMaxTerms = 1000;      // MFs of one variable
+inline constexpr int kMaxRules = 100000;
 
 struct Entry {
   std::string key, value;  // key in its canonical spelling ("NumMFs", "MF3")
@@ -25,6 +33,7 @@ struct Section {
   int line = 0;      // of its [header]
   std::vector<Entry> entries;
   std::vector<Row> rows;
+  std::map<std::string, std::size_t> by_key;  // into entries: lookups stay cheap for long sections
 
   std::string title() const { return "[" + kind + (index ? std::to_string(index) : "") + "]"; }
   const Entry* find(const std::string& key) const;
