@@ -17,6 +17,7 @@
 #include "fuzzy/inference.h"
 #include "fuzzy_material.h"
 #include "input_error.h"
+#include "text_file.h"
 
 namespace neurocloth::fuzzy {
 namespace {
@@ -114,12 +115,17 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(RuleFile, PicksTheReaderByExtension) {
   EXPECT_EQ(rule_format("a/b.fcl"), RuleFormat::fcl);
   EXPECT_EQ(rule_format("a/b.FIS"), RuleFormat::fis);
+  EXPECT_EQ(rule_format("/dev/stdin"), RuleFormat::fcl);  // as before .fis was read
+  // A .fis file is read as .fis: its error names a .fis field.
+  const fs::path path = fs::path(NEUROCLOTH_TEST_TMP) / "rule_file_test" / "empty.fis";
+  fs::create_directories(path.parent_path());
+  write_file_atomically(path.string(), std::string("[System]\n"));
   try {
-    read_rule_file("rules.txt");
-    FAIL() << "a .txt rule file was read";
+    read_rule_file(path.string());
+    FAIL() << "an empty .fis was read";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "rules.txt");
-    EXPECT_NE(e.message().find("expected .fcl"), std::string::npos) << e.what();
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_EQ(e.field(), "[System] Type") << e.what();
   }
 }
 

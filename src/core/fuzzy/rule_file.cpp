@@ -6,7 +6,6 @@
 #include "fcl_writer.h"
 #include "fis_reader.h"
 #include "fis_writer.h"
-#include "input_error.h"
 #include "text_file.h"
 
 namespace neurocloth::fuzzy {
@@ -15,11 +14,9 @@ RuleFormat rule_format(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext)
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  if (ext == ".fcl") return RuleFormat::fcl;
-  if (ext == ".fis") return RuleFormat::fis;
-  throw InputError(path, "rules",
-                   "unknown rule-file extension '" + ext +
-                       "': expected .fcl (Fuzzy Control Language) or .fis (MATLAB / Octave)");
+  // Anything but .fis is FCL, as every rule file was before .fis was read
+  // (a pipe or /dev/stdin included).
+  return ext == ".fis" ? RuleFormat::fis : RuleFormat::fcl;
 }
 
 FuzzySystem read_rule_file(const std::string& path) {

@@ -1,7 +1,7 @@
 #pragma once
 // One entry point for rule-base files, picking the format by extension:
-// ".fcl" (IEC 61131-7 and the fuzzylite / jFuzzyLogic dialects, fcl_reader.h)
-// or ".fis" (MATLAB / Octave, fis_reader.h). docs/fcl.md.
+// ".fis" (MATLAB / Octave, fis_reader.h), or else FCL (IEC 61131-7 and the
+// fuzzylite / jFuzzyLogic dialects, fcl_reader.h). docs/fcl.md.
 #include <string>
 
 #include "fuzzy_system.h"
@@ -10,7 +10,7 @@ namespace neurocloth::fuzzy {
 
 enum class RuleFormat { fcl, fis };
 
-// By extension, case-insensitively; InputError naming `path` for any other.
+// ".fis" (any case) is fis; every other name, extension or none, is FCL.
 RuleFormat rule_format(const std::string& path);
 
 // Throws InputError as the reader does.
