@@ -146,13 +146,15 @@ MembershipFunction Parser::foreign_term(const std::string& expected) {
     const char* name;
     Shape shape;
     int count;
-    int order[3];  // our parameter i is fuzzylite's order[i] (count <= 3)
+    int order[4];  // our parameter i is fuzzylite's parameter order[i]
   };
   static const Class kClasses[] = {
-      {"Triangle", Shape::triangle, 3, {0, 1, 2}},  {"Gaussian", Shape::gaussian, 2, {0, 1, 0}},
-      {"Bell", Shape::bell, 3, {1, 2, 0}},        // center width slope -> width slope center
-      {"Sigmoid", Shape::sigmoid, 2, {1, 0, 0}},  // inflection slope -> slope inflection
-      {"Constant", Shape::singleton, 1, {0, 0, 0}}, {"Trapezoid", Shape::trapezoid, 4, {0, 0, 0}},
+      {"Triangle", Shape::triangle, 3, {0, 1, 2, 0}},
+      {"Trapezoid", Shape::trapezoid, 4, {0, 1, 2, 3}},
+      {"Gaussian", Shape::gaussian, 2, {0, 1, 0, 0}},   // mean deviation
+      {"Bell", Shape::bell, 3, {1, 2, 0, 0}},           // center width slope -> width slope center
+      {"Sigmoid", Shape::sigmoid, 2, {1, 0, 0, 0}},     // inflection slope -> slope inflection
+      {"Constant", Shape::singleton, 1, {0, 0, 0, 0}},  // no height
   };
   const Token head = peek();
   if (head.kind != TokenKind::word) unexpected(expected);
@@ -162,7 +164,6 @@ MembershipFunction Parser::foreign_term(const std::string& expected) {
                "' has no equivalent in this engine (it has triangles, trapezoids, Gaussians, "
                "bells, sigmoids, point lists, singletons and linear consequents)",
            where(head));
-
   if (same_keyword(head.text, "Discrete")) return discrete(take());
   if (same_keyword(head.text, "Ramp")) return ramp(take());
   for (const Class& c : kClasses) {
@@ -173,10 +174,9 @@ MembershipFunction Parser::foreign_term(const std::string& expected) {
       given.push_back(expect_number("a number (" + head.text + " takes " + std::to_string(c.count) +
                                     " parameters)"));
     MembershipFunction f{c.shape, given};
-    if (c.shape != Shape::trapezoid)
-      for (int i = 0; i < c.count; ++i)
-        f.params[static_cast<std::size_t>(i)] = given[static_cast<std::size_t>(c.order[i])];
-    height(head);
+    for (int i = 0; i < c.count; ++i)
+      f.params[static_cast<std::size_t>(i)] = given[static_cast<std::size_t>(c.order[i])];
+    if (c.shape != Shape::singleton) height(head);
     return f;
   }
   unexpected(expected);
