@@ -170,7 +170,7 @@ const ErrorCase kErrors[] = {
      "METHOD COGS needs every term to be singleton or linear, but term 'low' (line 22) is trian"},
     {"UnsupportedMethod", {{"METHOD : COGS", "METHOD : COA"}},
      "DEFUZZIFY damping", "COA",
-     "expected COG or COGS (the supported defuzzification methods), got 'COA'"},
+     "METHOD : COA (centre of area) is not supported: this engine defuzzifies by COG"},
     // Linear terms.
     {"LinearUnknownInput", {{"force 0.01", "forse 0.01"}},
      "TERM lin", "forse", "linear term names 'forse', which is not an input (inputs: mass, force)"},

@@ -381,7 +381,7 @@ TEST(FclWriter, CanonicalFormOfAHandWrittenFileIsStable) {
       "fuzzify a term x:=trian 0 1 2; term y:=(0,0)(2,1); end_fuzzify\n"
       "defuzzify b range:=(0..1); term u:=singleton 0.3; term v:=.7; method:cogs; "
       "default:=nc; end_defuzzify\n"
-      "ruleblock rb or:asum; rule 1: if not (a is x or a is not y) and a is somewhat y "
+      "ruleblock rb and:min; or:asum; rule 1: if not (a is x or a is not y) and a is somewhat y "
       "then b is u with 0.25; end_ruleblock end_function_block\n";
   const FuzzySystem first = parse_fcl(hand, "hand.fcl");
   const std::string canonical = write_fcl(first);

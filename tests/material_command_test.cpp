@@ -67,5 +67,40 @@ TEST_F(Cli, MaterialBadInputs) {
   EXPECT_EQ(run({"material", "--preset", "silk", "--rules", fcl}).code, kUsage);
 }
 
+// A MATLAB .fis rule base serves as well as FCL (docs/fcl.md, "Rule files from
+// other tools"); a broken one names its file, line and field.
+TEST_F(Cli, MaterialFromAFisRuleBase) {
+  std::string fis =
+      "[System]\nName='tiny'\nType='sugeno'\nNumInputs=1\nNumOutputs=4\nNumRules=2\n"
+      "AndMethod='prod'\nOrMethod='probor'\nImpMethod='prod'\nAggMethod='sum'\n"
+      "DefuzzMethod='wtaver'\n\n[Input1]\nName='weight'\nRange=[0 1]\nNumMFs=2\n"
+      "MF1='light':'trimf',[0 0 1]\nMF2='heavy':'trimf',[0 1 1]\n";
+  const char* outputs[4][3] = {{"spring_constant", "[10 1000]", "50 800"},
+                               {"node_mass", "[0.001 0.1]", "0.002 0.02"},
+                               {"viscosity", "[0 1]", "0.01 0.1"},
+                               {"friction", "[0 1]", "0.2 0.6"}};
+  for (int k = 0; k < 4; ++k) {
+    const std::string values = outputs[k][2];
+    const auto space = values.find(' ');
+    fis += "\n[Output" + std::to_string(k + 1) + "]\nName='" + outputs[k][0] +
+           "'\nRange=" + outputs[k][1] + "\nNumMFs=2\nMF1='a':'constant',[" +
+           values.substr(0, space) + "]\nMF2='b':'constant',[" + values.substr(space + 1) + "]\n";
+  }
+  const std::string good =
+      write("tiny.fis", fis + "\n[Rules]\n1, 1 1 1 1 (1) : 1\n2, 2 2 2 2 (1) : 1\n");
+  const Outcome r = run({"material", "--rules", good, "--input", "weight=0.25", "--json"});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const json doc = json::parse(r.out);
+  EXPECT_NEAR(doc.at("outputs").at("spring_constant").get<double>(), 0.75 * 50 + 0.25 * 800, 1e-9);
+  const std::string broken =
+      write("broken.fis", fis + "\n[Rules]\n1, 1 1 1 1 (1) : 1\n3, 2 2 2 2 (1) : 1\n");
+  const Outcome b = run({"material", "--rules", broken, "--input", "weight=0.25"});
+  EXPECT_EQ(b.code, kInputError) << b.err;
+  EXPECT_NE(b.err.find(broken + ":"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("[Rules] rule 2"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("membership function 3 of input 'weight', which has 2"), std::string::npos)
+      << b.err;
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "fuzzy/fcl_reader.h"
 #include "fuzzy/inference.h"
+#include "fuzzy/rule_file.h"
 #include "fuzzy_material.h"
 #include "input_error.h"
 
@@ -49,7 +49,7 @@ int run_material(const MaterialOptions& o) {
     lm.source = "command line";
     lm.inputs_field = "--input";
   }
-  const fuzzy::FuzzySystem system = fuzzy::read_fcl(lm.rules_path);
+  const fuzzy::FuzzySystem system = fuzzy::read_rule_file(lm.rules_path);
   std::vector<double> x;
   std::string names;
   for (const auto& v : system.inputs)

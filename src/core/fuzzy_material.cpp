@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "asset_paths.h"
-#include "fuzzy/fcl_reader.h"
+#include "fuzzy/rule_file.h"
 #include "input_error.h"
 #include "linguistic_material_json.h"
 #include "text_file.h"
@@ -100,8 +100,8 @@ FuzzyMaterial::FuzzyMaterial(fuzzy::FuzzySystem system, std::string source)
   }
 }
 
-FuzzyMaterial FuzzyMaterial::load(const std::string& fcl_path) {
-  return FuzzyMaterial(fuzzy::read_fcl(fcl_path), fcl_path);
+FuzzyMaterial FuzzyMaterial::load(const std::string& path) {
+  return FuzzyMaterial(fuzzy::read_rule_file(path), path);
 }
 
 std::vector<double> FuzzyMaterial::input_vector(const std::map<std::string, double>& inputs,

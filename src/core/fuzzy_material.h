@@ -57,7 +57,8 @@ class FuzzyMaterial {
   // Throws InputError (naming `source`) when an output is missing or its range
   // admits values the network cannot take (node_mass <= 0, negative constants).
   FuzzyMaterial(fuzzy::FuzzySystem system, std::string source);
-  static FuzzyMaterial load(const std::string& fcl_path);
+  // A .fcl or .fis rule base (fuzzy/rule_file.h).
+  static FuzzyMaterial load(const std::string& path);
 
   // Every input of the rule base must be given, and nothing else; `where` names
   // the place they came from in messages (e.g. "scene.json" / "material.inputs").

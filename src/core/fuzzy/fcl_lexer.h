@@ -88,7 +88,8 @@ inline bool is_identifier(const std::string& s) {
   return !is_reserved(s);
 }
 
-// Splits FCL text into words, numbers and the symbols := : ; ( ) , ..
+// Splits FCL text into words, numbers and the symbols := : ; ( ) , .. |
+// ('|' only in fuzzylite's "DEFAULT := 0 | NC")
 // Comments are (* ... *) and // to the end of the line. The list ends with an
 // `end` token, or with an `error` token at the first thing that is no token
 // (the parser reports it with the element it was reading).
@@ -167,7 +168,7 @@ class Tokenizer {
     const char lead = sign ? at(1) : c;
     const char after = sign ? at(2) : at(1);
     if (is_digit(lead) || (lead == '.' && is_digit(after))) return number(t);
-    for (const char* symbol : {":=", "..", ":", ";", "(", ")", ","}) {
+    for (const char* symbol : {":=", "..", ":", ";", "(", ")", ",", "|"}) {
       if (s_.compare(i_, std::char_traits<char>::length(symbol), symbol) != 0) continue;
       t.kind = TokenKind::symbol;
       t.text = symbol;

@@ -1,7 +1,8 @@
 #pragma once
 // Reads a rule base in the Fuzzy Control Language (IEC 61131-7), with the
-// common extensions for named membership functions. Grammar and extensions:
-// docs/fcl.md. Every error is an InputError naming file, line, column and what
+// common extensions for named membership functions, and the dialects
+// fuzzylite and jFuzzyLogic write (fcl_dialect.cpp). Grammar, extensions and
+// dialects: docs/fcl.md. Every error is an InputError naming file, line, column and what
 // was expected; nothing half-loaded is ever returned.
 #include <string>
 

@@ -71,6 +71,16 @@ std::vector<double> MembershipFunction::breakpoints() const {
   }
 }
 
+std::vector<double> MembershipFunction::axis_positions() const {
+  const auto& p = params;
+  if (shape == Shape::points) return breakpoints();
+  if (shape == Shape::gaussian) return {p[0]};  // mean
+  if (shape == Shape::bell) return {p[2]};      // centre c
+  if (shape == Shape::sigmoid) return {p[1]};   // centre
+  if (shape == Shape::linear) return {};
+  return p;  // trian, trape, singleton: every parameter
+}
+
 std::string MembershipFunction::validate() const {
   const int n = parameter_count(shape);
   if (n >= 0 && static_cast<int>(params.size()) != n)

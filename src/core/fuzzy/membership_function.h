@@ -32,6 +32,9 @@ struct MembershipFunction {
   }
   // x positions where the slope of a piecewise-linear shape changes.
   std::vector<double> breakpoints() const;
+  // The parameters that are positions on the variable's axis: what rule-file
+  // readers check against the RANGE and infer a missing RANGE from.
+  std::vector<double> axis_positions() const;
   // Empty when valid; otherwise what is wrong (e.g. "triangle needs a <= b <= c").
   std::string validate() const;
 
