@@ -4,6 +4,7 @@
 #include "cli_fixture.h"
 
 #include "fuzzy/fcl_reader.h"
+#include "fuzzy/rule_file.h"
 
 namespace neurocloth::cli_test {
 namespace {
@@ -88,6 +89,61 @@ TEST_F(CliTuneRules, RecoversConsequentsAndWritesAReadableRuleBase) {
   const std::string per_example = read_text((out_dir() / "tuned.examples.csv").string());
   EXPECT_EQ(per_example.rfind("line,x,y_target,y_before,y_after,rmse_before,rmse_after\n", 0), 0u)
       << per_example;
+}
+
+// A MATLAB .fis in, a .fis out: the same tuning, the summary as % comments.
+TEST_F(CliTuneRules, ReadsAndWritesAFis) {
+  const std::string fis = write("rules.fis", R"([System]
+Name='t'
+Type='sugeno'
+NumInputs=1
+NumOutputs=1
+NumRules=2
+AndMethod='min'
+OrMethod='max'
+ImpMethod='prod'
+AggMethod='sum'
+DefuzzMethod='wtaver'
+
+[Input1]
+Name='x'
+Range=[0 10]
+NumMFs=2
+MF1='low':'trimf',[0 0 10]
+MF2='high':'trimf',[0 10 10]
+
+[Output1]
+Name='y'
+Range=[0 100]
+NumMFs=2
+MF1='a':'constant',[10]
+MF2='b':'constant',[90]
+
+[Rules]
+1, 1 (1) : 1
+2, 2 (1) : 1
+)");
+  std::string csv = "x,y\n";
+  for (double x : {0.5, 2.0, 4.0, 6.5, 9.0})
+    csv += std::to_string(x) + "," + std::to_string((20 * (10 - x) + 70 * x) / 10) + "\n";
+  const std::string tuned = (out_dir() / "tuned.fis").string();
+  const Outcome r = run({"tune-rules", "--rules", fis, "--examples", write("ex.csv", csv), "--out",
+                         tuned, "--what", "consequents"});
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  const fuzzy::FuzzySystem back = fuzzy::read_rule_file(tuned);
+  EXPECT_NEAR(back.outputs[0].terms[0].function.params[0], 20, 1e-6);
+  EXPECT_NEAR(back.outputs[0].terms[1].function.params[0], 70, 1e-6);
+  EXPECT_EQ(read_text(tuned).rfind("% Tuned by neurocloth-cli tune-rules", 0), 0u);
+  EXPECT_TRUE(fs::exists(out_dir() / "tuned.examples.csv"));
+  fs::remove(tuned);
+  fs::remove(out_dir() / "tuned.examples.csv");
+  // A rule base a .fis cannot hold (a point list) is refused before the
+  // search, naming --out.
+  const std::string points =
+      write("points.fcl", with(kRules, "TERM low := trian 0 0 10;", "TERM low := (0, 1) (10, 0);"));
+  expect_input_error({"tune-rules", "--rules", points, "--examples", write("ex2.csv", csv), "--out",
+                      (out_dir() / "p.fis").string(), "--what", "consequents"},
+                     {"--out", ".fis"});
 }
 
 TEST_F(CliTuneRules, TunesTermsWithAProgressLine) {

@@ -135,12 +135,13 @@ int main(int argc, char** argv) {
   auto* tune_cmd = app.add_subcommand(
       "tune-rules",
       "Tune a rule base's terms to examples of what it should give; write the tuned FCL");
-  tune_cmd->add_option("--rules", tune.rules, "The rule base to tune (FCL)")->required();
+  tune_cmd->add_option("--rules", tune.rules, "The rule base to tune (FCL, or MATLAB/Octave .fis)")
+      ->required();
   tune_cmd
       ->add_option("--examples", tune.examples,
                    "CSV: a header naming every input and the outputs to tune, one example a row")
       ->required();
-  tune_cmd->add_option("--out", tune.out, "OUT.fcl (also OUT.examples.csv)")->required();
+  tune_cmd->add_option("--out", tune.out, "OUT.fcl or OUT.fis (also OUT.examples.csv)")->required();
   tune_cmd
       ->add_option("--what", tune.what,
                    "mf (inputs' membership functions and Mamdani output sets; inputs or sets for "

@@ -7,12 +7,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/fcl_writer.h"
+#include "fuzzy/fis_reader.h"
+#include "fuzzy/fis_writer.h"
+#include "fuzzy/rule_file.h"
 #include "input_error.h"
 #include "long_run.h"
 #include "motion_outputs.h"
@@ -26,19 +30,19 @@ namespace {
 
 constexpr int kMaxIterations = 1000000;
 
-// The one place a rule file is read (an FCL today; any format the reader learns later).
+// The one place a rule file is read: FCL (and other tools' dialects) or .fis.
 fuzzy::FuzzySystem read_rules(const std::string& path) {
-  return fuzzy::read_fcl(path);
+  return fuzzy::read_rule_file(path);
 }
 
-// OUT.fcl -> OUT.examples.csv (any other name: OUT.examples.csv after it).
+// OUT.fcl or OUT.fis -> OUT.examples.csv (any other name: OUT.examples.csv after it).
 std::string examples_csv_name(const std::string& out) {
   std::string stem = out;
   if (stem.size() > 4) {
     std::string ext = stem.substr(stem.size() - 4);
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });
-    if (ext == ".fcl") stem.resize(stem.size() - 4);
+    if (ext == ".fcl" || ext == ".fis") stem.resize(stem.size() - 4);
   }
   return stem + ".examples.csv";
 }
@@ -164,8 +168,9 @@ std::string examples_csv(const fuzzy::FuzzySystem& s, const RuleExamples& e,
   return out;
 }
 
-std::string tuned_fcl(const fuzzy::FuzzySystem& s, const RuleExamples& e, const RuleTuningResult& r,
-                      const std::vector<std::string>& moved) {
+std::string tuned_text(const fuzzy::FuzzySystem& s, const RuleExamples& e,
+                       const RuleTuningResult& r, const std::vector<std::string>& moved,
+                       fuzzy::RuleFormat format) {
   const std::vector<double> before = rmse_per_output(e, r.before),
                             after = rmse_per_output(e, r.after);
   std::string c = "Tuned by neurocloth-cli tune-rules to " + std::to_string(e.size()) +
@@ -179,9 +184,18 @@ std::string tuned_fcl(const fuzzy::FuzzySystem& s, const RuleExamples& e, const 
   if (!r.active.empty()) c += "\n   held by the constraints:";
   for (const std::string& a : r.active)
     c += "\n     " + a;
-  const std::string text = "(* " + comment_safe(c) + " *)\n" + fuzzy::write_fcl(s);
   // What is written must read back (the writer's promise, checked before
   // anything reaches the disk).
+  if (format == fuzzy::RuleFormat::fis) {
+    std::string text;
+    std::istringstream lines(c);
+    for (std::string line; std::getline(lines, line);)
+      text += "% " + line + "\n";
+    text += fuzzy::write_fis(s);
+    fuzzy::parse_fis(text, "the tuned rule base");
+    return text;
+  }
+  const std::string text = "(* " + comment_safe(c) + " *)\n" + fuzzy::write_fcl(s);
   fuzzy::parse_fcl(text, "the tuned rule base");
   return text;
 }
@@ -199,6 +213,13 @@ int run_tune_rules(const TuneRulesOptions& o) {
   RuleTuningOptions tuning;
   check_options(o, tuning);
   const fuzzy::FuzzySystem system = read_rules(o.rules);
+  // A .fis cannot hold every rule base (hedges, point lists, nested
+  // conditions): said before the search, not after it.
+  if (fuzzy::rule_format(o.out) == fuzzy::RuleFormat::fis) try {
+      fuzzy::write_fis(system);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("command line", "--out", std::string("cannot write a .fis: ") + e.what());
+    }
   const RuleExamples examples = read_rule_examples(o.examples, system);
   const RuleTuning problem(system, examples, tuning);
 
@@ -246,7 +267,8 @@ int run_tune_rules(const TuneRulesOptions& o) {
   for (const std::string& a : result.active)
     std::printf("  %s\n", a.c_str());
 
-  const std::string fcl = tuned_fcl(result.tuned, examples, result, moved);
+  const std::string fcl =
+      tuned_text(result.tuned, examples, result, moved, fuzzy::rule_format(o.out));
   const std::string csv = examples_csv(system, examples, result);
   const std::string csv_path = examples_csv_name(o.out);
   write_file_atomically(o.out, fcl);
