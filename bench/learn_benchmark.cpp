@@ -23,21 +23,28 @@ struct Case {
   ReferenceMotion reference;
 };
 
-Case make_case(int n, int steps) {
-  Case c;
-  c.scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging.json"), n);
-  Simulation sim = c.scene.make_simulation();
-  const double seconds = steps * c.scene.solver.dt;
-  for (double t = 1.0 / 60; t <= seconds + 1e-12; t += 1.0 / 60) {
-    sim.advance(t - sim.time());
+// The scene's run recorded every `interval` s for `seconds`, every node
+// lifted by 1 mm (so the loss and its gradient are not zero).
+ReferenceMotion lifted_recording(const Scene& scene, double seconds, double interval) {
+  ReferenceMotion ref;
+  Simulation sim = scene.make_simulation();
+  for (int k = 1; k * interval <= seconds + 1e-12; ++k) {
+    sim.advance(k * interval - sim.time());
     ReferenceFrame f;
     f.time = sim.time();
     for (std::size_t i = 0; i < sim.state().size(); ++i) {
       f.nodes.push_back(static_cast<std::int32_t>(i));
       f.positions.push_back(sim.state().position(i) + Vec3(0, 1e-3, 0));
     }
-    c.reference.frames.push_back(f);
+    ref.frames.push_back(f);
   }
+  return ref;
+}
+
+Case make_case(int n, int steps) {
+  Case c;
+  c.scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging.json"), n);
+  c.reference = lifted_recording(c.scene, steps * c.scene.solver.dt, 1.0 / 60);
   return c;
 }
 
@@ -69,17 +76,7 @@ void BM_FitGradient(benchmark::State& state) {
 void BM_FitWordsGradient(benchmark::State& state) {
   Case c;
   c.scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging_fuzzy.json"), 32);
-  Simulation sim = c.scene.make_simulation();
-  for (int k = 1; k <= 8; ++k) {
-    sim.advance(k * 0.05 / 8 - sim.time());
-    ReferenceFrame f;
-    f.time = sim.time();
-    for (std::size_t i = 0; i < sim.state().size(); ++i) {
-      f.nodes.push_back(static_cast<std::int32_t>(i));
-      f.positions.push_back(sim.state().position(i) + Vec3(0, 1e-3, 0));
-    }
-    c.reference.frames.push_back(f);
-  }
+  c.reference = lifted_recording(c.scene, 0.05, 0.05 / 8);
   FitSettings s;
   if (state.range(0)) s.params = {"input.mass", "input.elasticity", "input.force"};
   FitProblem p(c.scene, c.reference, s);

@@ -1,6 +1,9 @@
 #include "csv_fields.h"
 
 #include <cstdio>
+#include <limits>
+
+#include "input_error.h"
 
 namespace neurocloth {
 
@@ -37,6 +40,32 @@ std::string shown(std::string_view s) {
     }
   }
   return out + (s.size() > 40 ? "...'" : "'");
+}
+
+int walk_csv_lines(const std::string& text, const std::string& path, const std::string& no_header,
+                   const std::function<void(std::string_view line, int number)>& header,
+                   const std::function<void(std::string_view line, int number)>& row) {
+  std::string_view rest(text);
+  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
+  bool have_header = false;
+  int line_number = 0;
+  while (!rest.empty()) {
+    const std::size_t eol = rest.find('\n');
+    const std::string_view line = trimmed(rest.substr(0, eol));
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+    if (line_number == std::numeric_limits<int>::max())
+      throw InputError(path, "", "too many lines", line_number);
+    ++line_number;
+    if (line.empty() || line.front() == '#') continue;
+    if (!have_header) {
+      header(line, line_number);
+      have_header = true;
+    } else {
+      row(line, line_number);
+    }
+  }
+  if (!have_header) throw InputError(path, "header", no_header, line_number);
+  return line_number;
 }
 
 }  // namespace neurocloth

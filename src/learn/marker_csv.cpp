@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -146,30 +145,11 @@ class MarkerReader {
 ReferenceMotion parse_marker_csv(const std::string& text, const std::string& path,
                                  std::size_t node_count) {
   if (node_count == 0) throw InputError(path, "", "the scene has no nodes to observe");
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
   MarkerReader reader(path, node_count);
-  bool have_header = false;
-  int line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t eol = rest.find('\n');
-    const std::string_view line = trimmed(rest.substr(0, eol));
-    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
-    if (line_number == std::numeric_limits<int>::max())
-      throw InputError(path, "", "too many lines", line_number);
-    ++line_number;
-    if (line.empty() || line.front() == '#') continue;
-    if (!have_header) {
-      reader.header(line, line_number);
-      have_header = true;
-    } else {
-      reader.row(line, line_number);
-    }
-  }
-  if (!have_header)
-    throw InputError(path, "header",
-                     "empty: expected the CSV header 'time,node,x,y,z' or a recording",
-                     line_number);
+  const int line_number = walk_csv_lines(
+      text, path, "empty: expected the CSV header 'time,node,x,y,z' or a recording",
+      [&](std::string_view line, int n) { reader.header(line, n); },
+      [&](std::string_view line, int n) { reader.row(line, n); });
   return reader.finish(line_number);
 }
 

@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <sstream>
 #include <string_view>
 
@@ -131,30 +130,11 @@ class ExampleReader {
 
 RuleExamples parse_rule_examples(const std::string& text, const std::string& path,
                                  const FuzzySystem& system) {
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
   ExampleReader reader(path, system);
-  bool have_header = false;
-  int line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t eol = rest.find('\n');
-    const std::string_view line = trimmed(rest.substr(0, eol));
-    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
-    if (line_number == std::numeric_limits<int>::max())
-      throw InputError(path, "", "too many lines", line_number);
-    ++line_number;
-    if (line.empty() || line.front() == '#') continue;
-    if (!have_header) {
-      reader.header(line, line_number);
-      have_header = true;
-    } else {
-      reader.row(line, line_number);
-    }
-  }
-  if (!have_header)
-    throw InputError(path, "header",
-                     "empty: expected a header naming every input and the outputs to tune",
-                     line_number);
+  const int line_number = walk_csv_lines(
+      text, path, "empty: expected a header naming every input and the outputs to tune",
+      [&](std::string_view line, int n) { reader.header(line, n); },
+      [&](std::string_view line, int n) { reader.row(line, n); });
   return reader.finish(line_number);
 }
 
