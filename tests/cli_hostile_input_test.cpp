@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli_fixture.h"
+#include "line_of.h"
 
 namespace neurocloth::cli_test {
 namespace {
@@ -26,12 +27,7 @@ std::string repeat(const std::string& s, int n) {
   return out;
 }
 
-// The line of the first occurrence of `what` in `text`.
-int line_of(const std::string& text, const std::string& what) {
-  const auto at = text.find(what);
-  EXPECT_NE(at, std::string::npos) << what;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-}
+using test::line_of;
 
 std::vector<std::string> cloth_inputs() {
   return {"--input", "mass=0.2", "--input", "elasticity=0.3", "--input", "force=3"};

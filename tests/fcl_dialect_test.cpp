@@ -15,24 +15,17 @@
 
 #include "fuzzy/fcl_reader.h"
 #include "input_error.h"
+#include "line_of.h"
+#include "rule_file_data.h"
 
 namespace neurocloth::fuzzy {
 namespace {
 namespace fs = std::filesystem;
 
 std::string text_of(const std::string& name) {
-  std::ifstream in(fs::path(NEUROCLOTH_TEST_DATA) / "rule_files" / name, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return test::rule_file_text(name);
 }
-
-int line_of(const std::string& text, const std::string& at) {
-  const auto pos = text.find(at);
-  if (pos == std::string::npos) return -1;
-  return 1 +
-         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
+using test::line_of;
 
 struct Refusal {
   const char* name;

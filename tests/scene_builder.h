@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "line_of.h"
 #include "scene.h"
 #include "vec3.h"
 
@@ -120,16 +121,5 @@ class SceneBuilder {
 
   Json doc_;
 };
-
-// The 1-based line of the first `what` in `text`: where a reader's error about
-// it must point.
-inline int line_of(const std::string& text, const std::string& what) {
-  const std::size_t at = text.find(what);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << what << "' is not in:\n" << text;
-  int line = 1;
-  for (std::size_t i = 0; i < at && i < text.size(); ++i)
-    line += text[i] == '\n';
-  return line;
-}
 
 }  // namespace neurocloth::test
