@@ -289,5 +289,17 @@ TEST_F(HostileInput, AFolderOrARuleBaseGivenAsASceneIsNamedAsSuch) {
                      {kRules, "FCL rule base", "material.rules"});
 }
 
+// The output is renamed over its path: over a FIFO or a device (/dev/null) it
+// would replace the special file itself with a regular one.
+TEST_F(HostileInput, AnOutputThatIsNotARegularFileIsRefused) {
+  const std::string fifo = (dir_ / "pipe").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--out", fifo},
+                     {"--out", fifo, "not a regular file"});
+  struct stat st {};
+  ASSERT_EQ(lstat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << fifo << " was replaced";
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test

@@ -51,6 +51,21 @@ TEST_F(CliTuneRules, BadExamplesAreRefusedNamingFileLineAndField) {
   expect_input_error(args(write("h.csv", "x\n1\n")), {"h.csv:1", "no output"});
 }
 
+// A header name that is no variable is the file's bytes: a terminal escape or a
+// carriage return is shown as \xNN and a long one cut, so the error stays one
+// short line.
+TEST_F(CliTuneRules, AnUnknownHeaderNameIsShownSafely) {
+  const std::string name = "a\rb" + std::string(100000, '\x1b');
+  const Outcome o = run(args(write("a.csv", "x,y," + name + "\n1,2,3\n")));
+  EXPECT_EQ(o.code, kInputError) << o.err;
+  EXPECT_NE(o.err.find("a.csv:1:3"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("a\\x0db"), std::string::npos) << o.err;
+  EXPECT_EQ(o.err.find('\r'), std::string::npos);
+  EXPECT_EQ(o.err.find('\x1b'), std::string::npos);
+  EXPECT_LT(o.err.size(), 400u);
+  EXPECT_TRUE(files_in_out_dir().empty());
+}
+
 TEST_F(CliTuneRules, AnOutputOverAnInputIsRefused) {
   const std::string examples = write("ex.csv", "x,y\n1,20\n9,80\n");
   const std::string r = rules();

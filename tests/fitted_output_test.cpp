@@ -226,5 +226,20 @@ TEST_F(FittedOutput, RebasedPathsResolveFromTheNewFolder) {
   EXPECT_EQ(fitted_file_names("F").weights, "F.weights.json");
 }
 
+// FITTED.example.csv is for tune-rules, which refuses an input outside its
+// RANGE: a scene's input beyond it is written as the clamped value the rule
+// base saw (elasticity 5 in cloth.fcl's RANGE 0 .. 1: 1).
+TEST_F(FittedOutput, TheTuningExampleHoldsTheInputsTheRuleBaseSaw) {
+  Scene scene = load_scene(assets_directory() + "/scenes/hanging_fuzzy.json");
+  ASSERT_TRUE(scene.fuzzy_material);
+  scene.fuzzy_material->inputs["elasticity"] = 5;
+  scene.fuzzy_material->inputs["mass"] = -3;
+  const std::optional<std::string> example = tuning_example(scene, summary());
+  ASSERT_TRUE(example);
+  EXPECT_NE(example->find("\nelasticity,force,mass,spring_constant,viscosity\n1,3,0.02,321,0.05\n"),
+            std::string::npos)
+      << *example;
+}
+
 }  // namespace
 }  // namespace neurocloth

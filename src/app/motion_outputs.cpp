@@ -34,6 +34,11 @@ void check_output_path(const char* option, const std::string& path,
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError("command line", option, "'" + path + "' is a folder, not a file to write");
+  // The write renames a new file over the path: over /dev/null or a FIFO it
+  // would replace the device itself.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError("command line", option,
+                     "'" + path + "' exists and is not a regular file (a device, FIFO or socket)");
   for (const std::string& in : inputs)
     if (!in.empty() && same_file(path, in))
       throw InputError("command line", option,

@@ -1,5 +1,6 @@
 #include "fitted_output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -206,9 +207,17 @@ std::string loss_csv(const FitHistory& h) {
 std::optional<std::string> tuning_example(const Scene& original, const FitSummary& summary) {
   if (!original.fuzzy_material || !summary.words.empty()) return std::nullopt;
   std::string header, row;
+  const fuzzy::FuzzySystem& rules = original.fuzzy_material->rules->system();
   for (const auto& [name, value] : original.fuzzy_material->inputs) {
+    // The value the rule base saw: a scene's input outside its RANGE is
+    // clamped, and tune-rules refuses one outside it.
+    double seen = value;
+    if (const int i = rules.input_index(name); i >= 0) {
+      const fuzzy::LinguisticVariable& v = rules.inputs[static_cast<std::size_t>(i)];
+      seen = std::min(std::max(value, v.min), v.max);
+    }
     header += (header.empty() ? "" : ",") + name;
-    row += (row.empty() ? "" : ",") + csv_number(value);
+    row += (row.empty() ? "" : ",") + csv_number(seen);
   }
   bool any = false;
   for (const char* output : FuzzyMaterial::kOutputs)

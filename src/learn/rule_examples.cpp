@@ -42,20 +42,23 @@ class ExampleReader {
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const std::string name(fields[c]);
       const int column = int(c) + 1;
+      const int i = system_.input_index(name), o = system_.output_index(name);
+      // An unknown name is the file's bytes (a binary file, a terminal
+      // escape): quoted safely, never made the field.
+      if (i < 0 && o < 0)
+        throw InputError(path_, "header",
+                         shown(name) + " is not an input or output of rule base '" + system_.name +
+                             "'" + (name.empty() ? " (an empty column name)" : ""),
+                         line_number, column);
       for (const Column& seen : columns_)
         if (seen.name == name)
           throw InputError(path_, name, "named twice in the header", line_number, column);
-      if (const int i = system_.input_index(name); i >= 0) {
+      if (i >= 0) {
         input_seen[i] = true;
         columns_.push_back({name, true, i, &system_.inputs[i]});
-      } else if (const int o = system_.output_index(name); o >= 0) {
+      } else {
         columns_.push_back({name, false, int(examples_.outputs.size()), &system_.outputs[o]});
         examples_.outputs.push_back(o);
-      } else {
-        throw InputError(path_, name.empty() ? "header" : name,
-                         "not an input or output of rule base '" + system_.name + "'" +
-                             (name.empty() ? " (an empty column name)" : ""),
-                         line_number, column);
       }
     }
     for (std::size_t i = 0; i < input_seen.size(); ++i)
