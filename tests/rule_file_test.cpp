@@ -109,7 +109,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Dialect{"fuzzylite_drape.fcl", "fuzzylite_drape.standard.fcl"},
                       Dialect{"jfuzzylogic_drape.fcl", "jfuzzylogic_drape.standard.fcl"},
                       Dialect{"matlab_drape.fis", "matlab_drape.standard.fcl"},
-                      Dialect{"octave_damping.fis", "octave_damping.standard.fcl"}),
+                      Dialect{"octave_damping.fis", "octave_damping.standard.fcl"},
+                      // MATLAB's default terms, reaching beyond Range.
+                      Dialect{"matlab_defaults.fis", "matlab_defaults.standard.fcl"}),
     [](const auto& info) { return fs::path(info.param.file).stem().string(); });
 
 TEST(RuleFile, PicksTheReaderByExtension) {

@@ -1,5 +1,6 @@
 #include "fcl_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -85,7 +86,7 @@ class Writer {
     for (const Term& t : v.terms) {
       const std::string problem = t.function.validate();
       if (!problem.empty()) refuse("term '" + t.name + "' of '" + v.name + "': " + problem);
-      out_ += "  TERM " + name(t.name, "term name") + " := " + membership(t.function) + ";\n";
+      out_ += "  TERM " + name(t.name, "term name") + " := " + membership(inside(t, v)) + ";\n";
     }
     if (output) {
       const bool cogs = v.method == Defuzzification::weighted_average;
@@ -94,6 +95,32 @@ class Writer {
       if (!std::isnan(v.default_value)) out_ += "  DEFAULT := " + number(v.default_value) + ";\n";
     }
     out_ += "END_" + keyword + "\n";
+  }
+
+  // FCL keeps a term's positions inside its RANGE (a .fis need not: MATLAB's
+  // default terms reach beyond it). A piecewise-linear term is written as the
+  // point list it draws inside the range, which is all inference reads of it.
+  MembershipFunction inside(const Term& t, const LinguisticVariable& v) {
+    const MembershipFunction& f = t.function;
+    bool beyond = false;
+    for (double x : f.axis_positions())
+      beyond = beyond || x < v.min || x > v.max;
+    if (!beyond) return f;
+    if (!f.piecewise_linear())
+      refuse("term '" + t.name + "' of '" + v.name +
+             "' reaches beyond its RANGE, which FCL cannot hold for a " + to_string(f.shape));
+    std::vector<double> xs = {v.min, v.max};
+    for (double b : f.breakpoints())
+      if (b > v.min && b < v.max) xs.push_back(b);
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    MembershipFunction clipped;
+    clipped.shape = Shape::points;
+    for (double x : xs) {
+      clipped.params.push_back(x);
+      clipped.params.push_back(f(x));
+    }
+    return clipped;
   }
 
   std::string membership(const MembershipFunction& f) {

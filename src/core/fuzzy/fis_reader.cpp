@@ -199,7 +199,7 @@ class FisParser {
         fail(title + " NumMFs",
              "NumMFs=" + std::to_string(n) + " but MF" + std::to_string(k) + " is missing",
              required(s, "NumMFs").line);
-      v.terms.push_back(term(*e, title, v, output));
+      v.terms.push_back(term(*e, title, output));
     }
     if (n == 0)
       fail(title + " NumMFs", "'" + fis::shown(v.name) + "' has no membership function",
@@ -208,7 +208,7 @@ class FisParser {
     return v;
   }
 
-  Term term(const Entry& e, const std::string& title, const LinguisticVariable& v, bool output) {
+  Term term(const Entry& e, const std::string& title, bool output) {
     const std::string field = title + " " + e.key;
     const fis::MfLine mf = fis::mf_line(e.value, field, e.line, path_, 2 + kMaxVariables);
     fis::check_name(mf.name, field, e.line, path_);
@@ -217,13 +217,10 @@ class FisParser {
     Term t{mf.name, shape(mf, field, e.line, output)};
     const std::string problem = t.function.validate();
     if (!problem.empty()) fail(field, problem, e.line);
-    for (double x : t.function.axis_positions())
-      if (x < v.min || x > v.max)
-        fail(field,
-             "'" + fis::shown(mf.name) + "' reaches x = " + fis::show(x) + ", outside Range [" +
-                 fis::show(v.min) + " " + fis::show(v.max) +
-                 "] (as in FCL, terms lie inside their range)",
-             e.line);
+    // No check against Range: MATLAB's own default terms reach beyond it
+    // (trimf [-0.4 0 0.4] on [0 1]). Inference reads a term only inside the
+    // range (inputs are clamped to it, a centroid integrates over it), so such
+    // a term means what it draws there, as in MATLAB.
     return t;
   }
 
