@@ -11,26 +11,12 @@
 #include "fuzz_contract.h"
 #include "fuzzy/fcl_reader.h"
 #include "fuzzy/inference.h"
+#include "fuzzy_contract.h"
 
 namespace neurocloth::fuzz {
 namespace {
 
 using namespace neurocloth::fuzzy;
-
-void check_variable(const Contract& c, const LinguisticVariable& v, const std::string& f) {
-  c.finite(v.min, f + " RANGE min");
-  c.finite(v.max, f + " RANGE max");
-  c.require(v.min < v.max, f + " RANGE accepted with min >= max");
-  c.require(!v.terms.empty(), f + " accepted with no TERM");
-  for (const Term& t : v.terms) {
-    for (double p : t.function.params)
-      c.finite(p, f + " TERM " + t.name + " parameter");
-    const std::string problem = t.function.validate();
-    c.require(problem.empty(), f + " TERM " + t.name + " accepted but invalid: " + problem);
-  }
-  // NaN is the documented "DEFAULT := NC" (not given); infinity is not.
-  c.require(!std::isinf(v.default_value), f + " DEFAULT accepted as infinite");
-}
 
 // Walks a condition tree without recursion: the harness must not overflow
 // its own stack on a tree the reader built.
@@ -114,9 +100,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!system) return 0;
   const fuzz::Contract c("fcl");
   for (const auto& v : system->inputs)
-    fuzz::check_variable(c, v, "FUZZIFY " + v.name);
+    fuzz::check_variable(c, v, "FUZZIFY " + v.name, "RANGE", "TERM");
   for (const auto& v : system->outputs)
-    fuzz::check_variable(c, v, "DEFUZZIFY " + v.name);
+    fuzz::check_variable(c, v, "DEFUZZIFY " + v.name, "RANGE", "TERM");
   fuzz::check_rules(c, *system);
   fuzz::check_inference(c, *system);
   return 0;

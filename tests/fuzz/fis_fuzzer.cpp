@@ -14,24 +14,12 @@
 #include "fuzzy/fis_reader.h"
 #include "fuzzy/fis_writer.h"
 #include "fuzzy/inference.h"
+#include "fuzzy_contract.h"
 
 namespace neurocloth::fuzz {
 namespace {
 
 using namespace neurocloth::fuzzy;
-
-void check_variable(const Contract& c, const LinguisticVariable& v, const std::string& f) {
-  c.finite(v.min, f + " Range min");
-  c.finite(v.max, f + " Range max");
-  c.require(v.min < v.max, f + " Range accepted with min >= max");
-  c.require(!v.terms.empty(), f + " accepted with no MF");
-  for (const Term& t : v.terms) {
-    for (double p : t.function.params)
-      c.finite(p, f + " MF " + t.name + " parameter");
-    const std::string problem = t.function.validate();
-    c.require(problem.empty(), f + " MF " + t.name + " accepted but invalid: " + problem);
-  }
-}
 
 // .fis rules are one AND or one OR of terms: the tree is at most two deep.
 void check_term(const Contract& c, const FuzzySystem& s, const Condition& t, const std::string& f) {
@@ -107,9 +95,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!system) return 0;
   const fuzz::Contract c("fis");
   for (const auto& v : system->inputs)
-    fuzz::check_variable(c, v, "input " + v.name);
+    fuzz::check_variable(c, v, "input " + v.name, "Range", "MF");
   for (const auto& v : system->outputs)
-    fuzz::check_variable(c, v, "output " + v.name);
+    fuzz::check_variable(c, v, "output " + v.name, "Range", "MF");
   fuzz::check_rules(c, *system);
   fuzz::check_inference(c, *system);
   fuzz::check_write_back(c, *system);
