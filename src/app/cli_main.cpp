@@ -19,9 +19,11 @@ int main(int argc, char** argv) {
   simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required();
   simulate->add_option("--seconds", sim.seconds, "Simulated seconds (0 writes the initial state)")
       ->required();
-  simulate->add_option("--integrator", sim.integrator,
-                       "network | explicit_euler | verlet | rk4 | implicit_euler");
+  simulate->add_option("--integrator", sim.integrator, "One of: " + integrator_names());
   simulate->add_option("--dt", sim.dt, "Time step (the refresh interval when adaptive), s");
+  simulate->add_option("--iterations", sim.iterations,
+                       "projective: local-global iterations per step (default " +
+                           std::to_string(kDefaultProjectiveIterations) + ")");
   auto* adaptive =
       simulate->add_flag("--adaptive", sim.adaptive, "Adaptive propagation (paper, Table 1)");
   auto* fixed = simulate->add_flag("--fixed-step", sim.fixed_step, "Fixed time step");
@@ -34,7 +36,11 @@ int main(int argc, char** argv) {
       "--accuracy", sim.accuracy,
       "Pick the cheapest measured setting keeping the max position error within this fraction "
       "of the cloth's size (0.01 = 1%)");
-  accuracy->excludes("--integrator")->excludes("--dt")->excludes(adaptive)->excludes(fixed);
+  accuracy->excludes("--integrator")
+      ->excludes("--dt")
+      ->excludes("--iterations")
+      ->excludes(adaptive)
+      ->excludes(fixed);
   simulate
       ->add_option("--trade", sim.trade,
                    "The measured trade (tradeoff's CSV) --accuracy picks from; default "
@@ -67,8 +73,7 @@ int main(int argc, char** argv) {
                        "Wall seconds for each method's sweep (default 8)");
   tradeoff->add_option("--levels", trade.levels, "Settings per method at most (default 7)");
   tradeoff
-      ->add_option("--methods", trade.methods,
-                   "Only these (network, explicit_euler, verlet, rk4, implicit_euler, adaptive)")
+      ->add_option("--methods", trade.methods, "Only these (" + integrator_names() + ", adaptive)")
       ->delimiter(',');
 
   RelaxOptions rel;

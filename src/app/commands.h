@@ -26,6 +26,7 @@ struct SimulateOptions {
   double seconds = 0;
   std::optional<std::string> integrator;
   std::optional<double> dt;
+  std::optional<int> iterations;  // projective's local-global iterations per step
   bool adaptive = false;
   bool fixed_step = false;
   std::string out;

@@ -110,6 +110,13 @@ int run_simulate(const SimulateOptions& o) {
       throw InputError("command line", "--dt", "must be a finite number > 0");
     scene.solver.dt = *o.dt;
   }
+  if (o.iterations) {
+    if (!limits::kIterations.contains(*o.iterations))
+      throw InputError("command line", "--iterations",
+                       "must be in [1, 1000] (" + std::string(limits::kIterations.meaning) +
+                           "), got " + std::to_string(*o.iterations));
+    scene.solver.iterations = *o.iterations;
+  }
   if (o.adaptive) scene.solver.adaptive = true;
   if (o.fixed_step) scene.solver.adaptive = false;
 

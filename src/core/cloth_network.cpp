@@ -167,7 +167,12 @@ void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations
 
 }  // namespace
 
-void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
+void ClothNetwork::other_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
+  external_force(in, F);
+  add_module_forces(s, in, F);
+}
+
+void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F) const {
   // External force is the acceleration neurons' bias input.
   const NodeVectors& ext = in.external_force;
   if (ext.size() == 0) {
@@ -179,10 +184,19 @@ void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVe
     std::copy(ext.y.begin(), ext.y.end(), F.y.begin());
     std::copy(ext.z.begin(), ext.z.end(), F.z.begin());
   }
+}
+
+void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
+  external_force(in, F);
   if (springs.function.kind == SpringFunctionKind::linear)
     propagate_all<SpringFunctionKind::linear>(*this, s, F);
   else
     propagate_all<SpringFunctionKind::stiffening>(*this, s, F);
+  add_module_forces(s, in, F);
+}
+
+void ClothNetwork::add_module_forces(const ClothState& s, const ForceInputs& in,
+                                     NodeVectors& F) const {
   for (std::size_t k = 0; k < force_modules.size(); ++k) {
     if (k < in.clocks.size()) {
       ScopedModuleTimer timer(in.clocks[k]);

@@ -88,6 +88,9 @@ class ClothNetwork {
   void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // The same with no external force, at time 0.
   void net_forces(const ClothState& state, NodeVectors& force) const;
+  // Everything net_forces adds except the spring layer: the external force and
+  // the force modules (what a large-step solver treats as given over a step).
+  void other_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // How many springs are that short at `state` (a diagnostic, off the hot path).
   int degenerate_springs(const ClothState& state) const;
   // The force neurons' outputs themselves, one per spring (for inspection and learning).
@@ -102,6 +105,11 @@ class ClothNetwork {
   double external_potential(const ClothState& state, const ForceInputs& inputs) const;
   // The state at rest: nodes at `positions`, velocities zero.
   ClothState rest_state(const std::vector<Vec3>& positions) const;
+
+ private:
+  void external_force(const ForceInputs& inputs, NodeVectors& force) const;  // fills `force`
+  void add_module_forces(const ClothState& state, const ForceInputs& inputs,
+                         NodeVectors& force) const;
 };
 
 }  // namespace neurocloth

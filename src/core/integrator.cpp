@@ -16,6 +16,8 @@ const char* to_string(IntegratorKind k) {
       return "rk4";
     case IntegratorKind::implicit_euler:
       return "implicit_euler";
+    case IntegratorKind::projective:
+      return "projective";
   }
   return "?";
 }
@@ -34,7 +36,7 @@ std::string integrator_names() {
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
-                                            double min_step_fraction) {
+                                            double min_step_fraction, int iterations) {
   switch (kind) {
     case IntegratorKind::network:
       return make_network_propagation(net);
@@ -46,6 +48,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
       return make_runge_kutta4(net);
     case IntegratorKind::implicit_euler:
       return make_implicit_euler(net, min_step_fraction);
+    case IntegratorKind::projective:
+      return make_projective(net, iterations);
   }
   return nullptr;
 }

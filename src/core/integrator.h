@@ -11,10 +11,13 @@
 
 namespace neurocloth {
 
-enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler };
+enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler, projective };
 inline constexpr IntegratorKind kAllIntegrators[] = {
     IntegratorKind::network, IntegratorKind::explicit_euler, IntegratorKind::verlet,
-    IntegratorKind::rk4, IntegratorKind::implicit_euler};
+    IntegratorKind::rk4,     IntegratorKind::implicit_euler, IntegratorKind::projective};
+
+// Local-global iterations per step of `projective` (its accuracy knob) unless a scene says.
+inline constexpr int kDefaultProjectiveIterations = 10;
 
 const char* to_string(IntegratorKind k);
 std::optional<IntegratorKind> parse_integrator(const std::string& name);
@@ -23,7 +26,7 @@ std::string integrator_names();
 
 struct StepReport {
   int force_evaluations = 0;  // including the start-of-step evaluation
-  int cg_iterations = 0;
+  int cg_iterations = 0;      // or projective's local-global iterations
   bool cg_converged = true;
 };
 
@@ -50,8 +53,10 @@ class Integrator {
 };
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.
-// `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h).
+// `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
+// `iterations` the projective step's local-global iterations.
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
-                                            double min_step_fraction = kDefaultMinStepFraction);
+                                            double min_step_fraction = kDefaultMinStepFraction,
+                                            int iterations = kDefaultProjectiveIterations);
 
 }  // namespace neurocloth

@@ -66,6 +66,8 @@ inline constexpr Limit kStrainIterations{1, 1000, "",
                                          "each sweep costs a pass over the springs every step"};
 inline constexpr Limit kCollisionIterations{1, 100, "",
                                             "each pass costs a spatial-hash sweep every step"};
+inline constexpr Limit kIterations{1, 1000, "",
+                                   "each local-global iteration costs a solve every step"};
 inline constexpr Limit kCheckInterval{1, 1000000, "", "checks come at least once a million steps"};
 }  // namespace limits
 

@@ -202,7 +202,7 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   const std::string field = "solver";
   in.allow_only(v, field,
                 {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
-                 "check_interval"});
+                 "check_interval", "iterations"});
   if (in.has(v, "integrator")) {
     const std::string name = in.string(v.at("integrator"), field + ".integrator");
     const auto kind = parse_integrator(name);
@@ -225,6 +225,8 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   if (in.has(v, "check_interval"))
     s.divergence.check_interval =
         in.integer(v.at("check_interval"), field + ".check_interval", limits::kCheckInterval);
+  if (in.has(v, "iterations"))
+    s.iterations = in.integer(v.at("iterations"), field + ".iterations", limits::kIterations);
   return s;
 }
 

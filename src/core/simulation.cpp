@@ -69,7 +69,8 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       checkpoint_(initial),
       monitor_(net_, initial, settings.divergence),
       integrator_(
-          make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction)),
+          make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
+                          settings.iterations)),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
   if (initial.size() != net_.node_count())
@@ -137,7 +138,8 @@ void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
   settings_ = settings;
   integrator_ =
-      make_integrator(settings_.integrator, net_, settings_.adaptive_settings.min_step_fraction);
+      make_integrator(settings_.integrator, net_, settings_.adaptive_settings.min_step_fraction,
+                      settings_.iterations);
   start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());
   invalidate(Stale::weights);
 }

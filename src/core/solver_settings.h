@@ -49,6 +49,9 @@ struct SolverSettings {
   // divergence then says it was too large); the live simulation thread turns it
   // on, so a change made while the cloth moves cannot make it explode.
   bool substep_above_cap = false;
+  // The projective integrator's local-global iterations per step: its accuracy
+  // knob (more converge to the implicit Euler solution). Other integrators ignore it.
+  int iterations = kDefaultProjectiveIterations;
 };
 
 // Throws std::invalid_argument naming the first field out of its range
@@ -79,6 +82,8 @@ inline void validate(const SolverSettings& s) {
   if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
   if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);
   if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
+  if (!limits::kIterations.contains(s.iterations))
+    fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
 }
 
 }  // namespace neurocloth

@@ -68,9 +68,10 @@ std::string stop_reason(const TradeoffPlan& plan, const ReferenceReport& ref, co
 }  // namespace
 
 double first_step(const Scene& scene, IntegratorKind kind, double interval) {
-  if (kind == IntegratorKind::implicit_euler) return interval / 4;
   const ClothNetwork net = scene.build_network();
-  const double bound = stable_step_bound(net, make_integrator(kind, net)->stability_limit());
+  const double limit = make_integrator(kind, net)->stability_limit();
+  if (std::isinf(limit)) return interval / 4;  // implicit_euler, projective: no bound to meet
+  const double bound = stable_step_bound(net, limit);
   double h = interval;
   while (h > 2 * bound && h > interval * 1e-12)
     h /= 2;

@@ -1,0 +1,95 @@
+#include "spring_laplacian.h"
+
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <stdexcept>
+
+namespace neurocloth {
+
+bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>& node_weight,
+                             const std::vector<double>& spring_weight,
+                             const std::vector<double>& free) {
+  const std::size_t n = node_weight.size();
+  if (free.size() != n || spring_weight.size() != layer.size())
+    throw std::invalid_argument("SpringLaplacian::factor: one weight per node and per spring");
+  n_ = 0;
+  node_weight_.clear();
+  using Triplet = Eigen::Triplet<double, std::int32_t>;
+  std::vector<Triplet> entries;
+  entries.reserve(n + 3 * layer.size());
+  for (std::size_t i = 0; i < n; ++i)
+    entries.emplace_back(i, i, free[i] != 0.0 ? node_weight[i] : 1.0);
+  for (std::size_t s = 0; s < layer.size(); ++s) {
+    const std::int32_t a = layer.node_a[s], b = layer.node_b[s];
+    const double w = spring_weight[s];
+    const bool fa = free[a] != 0.0, fb = free[b] != 0.0;
+    if (fa) entries.emplace_back(a, a, w);
+    if (fb) entries.emplace_back(b, b, w);
+    if (fa && fb) entries.emplace_back(std::max(a, b), std::min(a, b), -w);  // lower triangle
+  }
+  Eigen::SparseMatrix<double, Eigen::ColMajor, std::int32_t> P(n, n);
+  P.setFromTriplets(entries.begin(), entries.end());  // sums duplicates
+  Eigen::SimplicialLLT<decltype(P), Eigen::Lower, Eigen::AMDOrdering<std::int32_t>> llt(P);
+  if (llt.info() != Eigen::Success) return false;
+
+  const auto& L = llt.matrixL().nestedExpression();
+  col_start_.assign(L.outerIndexPtr(), L.outerIndexPtr() + n + 1);
+  row_.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
+  value_.assign(L.valuePtr(), L.valuePtr() + L.nonZeros());
+  for (std::size_t j = 0; j < n; ++j)  // the solve divides by the first entry of each column
+    if (col_start_[j] >= col_start_[j + 1] || row_[col_start_[j]] != static_cast<std::int32_t>(j) ||
+        !(value_[col_start_[j]] > 0.0))
+      return false;
+  const auto& p = llt.permutationP().indices();
+  perm_.assign(p.data(), p.data() + n);
+  work_.assign(3 * n, 0.0);
+  node_weight_ = node_weight;
+  spring_weight_ = spring_weight;
+  free_ = free;
+  n_ = static_cast<std::int32_t>(n);
+  return true;
+}
+
+void SpringLaplacian::solve3(double* xyz) const {
+  double* y = work_.data();
+  for (std::int32_t i = 0; i < n_; ++i)
+    for (int c = 0; c < 3; ++c)
+      y[3 * perm_[i] + c] = xyz[3 * i + c];
+  // L y' = y: each column's pivot, then its entries below.
+  for (std::int32_t j = 0; j < n_; ++j) {
+    const std::int32_t begin = col_start_[j], end = col_start_[j + 1];
+    const double d = 1.0 / value_[begin];
+    const double yx = y[3 * j] * d, yy = y[3 * j + 1] * d, yz = y[3 * j + 2] * d;
+    y[3 * j] = yx;
+    y[3 * j + 1] = yy;
+    y[3 * j + 2] = yz;
+    for (std::int32_t k = begin + 1; k < end; ++k) {
+      double* t = y + 3 * row_[k];
+      const double l = value_[k];
+      t[0] -= l * yx;
+      t[1] -= l * yy;
+      t[2] -= l * yz;
+    }
+  }
+  // L^T z = y': each column's entries below are the row of L^T right of the pivot.
+  for (std::int32_t j = n_ - 1; j >= 0; --j) {
+    const std::int32_t begin = col_start_[j], end = col_start_[j + 1];
+    double sx = y[3 * j], sy = y[3 * j + 1], sz = y[3 * j + 2];
+    for (std::int32_t k = begin + 1; k < end; ++k) {
+      const double* t = y + 3 * row_[k];
+      const double l = value_[k];
+      sx -= l * t[0];
+      sy -= l * t[1];
+      sz -= l * t[2];
+    }
+    const double d = 1.0 / value_[begin];
+    y[3 * j] = sx * d;
+    y[3 * j + 1] = sy * d;
+    y[3 * j + 2] = sz * d;
+  }
+  for (std::int32_t i = 0; i < n_; ++i)
+    for (int c = 0; c < 3; ++c)
+      xyz[3 * i + c] = y[3 * perm_[i] + c];
+}
+
+}  // namespace neurocloth

@@ -1,0 +1,55 @@
+#pragma once
+// The constant matrix of a cloth's large steps (Liu et al. 2013, "Fast
+// simulation of mass-spring systems"):
+//   P = diag(node_weight) + sum_s w_s (e_a - e_b)(e_a - e_b)^T
+// one scalar row per node, the same for x, y and z: the springs' graph
+// Laplacian weighted per spring, plus a mass term. Pinned nodes are fixed, so
+// their rows are the identity and a spring to one adds only to the free end's
+// diagonal; with every node massive or anchored, P is symmetric positive
+// definite. Factored once by a sparse Cholesky (fill-reducing order) and then
+// solved for the three components at a time, reading the factor once.
+//
+// It is the global step of the `projective` integrator and the preconditioner
+// of the implicit step's conjugate gradient. Both refactor only when what
+// built it changes (`same_as`): a weight, a mass, a pin, or the step.
+#include <cstdint>
+#include <vector>
+
+#include "cloth_network.h"
+
+namespace neurocloth {
+
+class SpringLaplacian {
+ public:
+  // node_weight and free are per node, spring_weight per spring of `layer`.
+  // Returns false (and holds no factor) when P is not positive definite, e.g. a
+  // free node without mass or anchor.
+  bool factor(const SpringLayer& layer, const std::vector<double>& node_weight,
+              const std::vector<double>& spring_weight, const std::vector<double>& free);
+  bool factored() const { return n_ > 0; }
+  std::size_t nodes() const { return static_cast<std::size_t>(n_); }
+
+  // xyz <- P^-1 xyz, three components interleaved (x0 y0 z0 x1 ...): 3 * nodes() values.
+  void solve3(double* xyz) const;
+
+  // True when factor() was last called with exactly these arguments.
+  bool same_as(const std::vector<double>& node_weight, const std::vector<double>& spring_weight,
+               const std::vector<double>& free) const {
+    return n_ > 0 && node_weight == node_weight_ && spring_weight == spring_weight_ &&
+           free == free_;
+  }
+  // Entries of the factor (a cost figure: each solve reads them once).
+  std::size_t factor_entries() const { return row_.size(); }
+
+ private:
+  std::int32_t n_ = 0;
+  // The lower factor L of the permuted P, column by column (CSC), the diagonal
+  // first in every column; P = perm^T L L^T perm.
+  std::vector<std::int32_t> col_start_, row_;
+  std::vector<double> value_;
+  std::vector<std::int32_t> perm_;  // node i is row perm_[i] of the factor
+  mutable std::vector<double> work_;
+  std::vector<double> node_weight_, spring_weight_, free_;
+};
+
+}  // namespace neurocloth

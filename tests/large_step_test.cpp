@@ -1,0 +1,200 @@
+// The projective integrator against the equations it solves: its local-global
+// iterations against backward Euler itself (the root of its nonlinear
+// equations, found here by Newton's method), and its prefactored matrix.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "implicit_system.h"
+#include "integrator.h"
+#include "scene_builder.h"
+#include "spring_laplacian.h"
+
+namespace neurocloth {
+namespace {
+
+// A cloth hanging from its top corners, moving: a few network steps from rest.
+struct Moving {
+  ClothNetwork net;
+  ClothState state;
+};
+
+Moving moving_cloth(int n, bool stiffening = false) {
+  test::SceneBuilder b(n, n, 0.3 / (n - 1));
+  b.hanging().pins(nlohmann::json::array({nlohmann::json{0, 0}, nlohmann::json{0, n - 1}}));
+  b.material(400.0, 0.02, 0.2);
+  if (stiffening)
+    b.set("/cloth/spring_function", {{"type", "stiffening"}, {"strain", 0.01}, {"factor", 20}});
+  const Scene scene = b.parse();
+  Moving m{scene.build_network(), scene.initial_state()};
+  for (std::size_t i = 0; i < m.state.size(); ++i)  // a sideways push
+    m.state.vz[i] = 0.5 * std::sin(0.7 * static_cast<double>(i));
+  const auto integrator = make_integrator(IntegratorKind::network, m.net);
+  NodeVectors f(m.net.node_count());
+  ClothState next = m.state;
+  for (int k = 0; k < 200; ++k) {
+    m.net.net_forces(m.state, f);
+    integrator->step(m.net, ForceInputs{}, m.state, f, 2e-4, next);
+    std::swap(m.state, next);
+  }
+  return m;
+}
+
+double max_difference(const ClothState& a, const ClothState& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, (a.position(i) - b.position(i)).norm());
+  return worst;
+}
+
+// Backward Euler's residual at end velocities v: M (v - v0) - h (F(x0 + h v, v) + M g)
+// on free nodes, relative to the largest force in play.
+double backward_euler_residual(const ClothNetwork& net, const ClothState& in, const ClothState& out,
+                               double h) {
+  NodeVectors f(net.node_count());
+  net.net_forces(out, f);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < net.node_count(); ++i) {
+    if (net.masses.free[i] == 0.0) continue;
+    const double m = net.mass(i);
+    const Vec3 force = f.at(i) + m * net.gravity;
+    worst = std::max(worst, (m * (out.velocity(i) - in.velocity(i)) / h - force).norm());
+    scale = std::max(scale, force.norm() + m * net.gravity.norm());
+  }
+  return worst / scale;
+}
+
+// Newton's method on backward Euler (the Jacobian M + h D + h^2 K with the
+// exact stiffness; the damping's dependence on direction is left out, so it
+// converges linearly where the cloth is damped): the root to rounding.
+ClothState backward_euler(const ClothNetwork& net, const ClothState& in, double h) {
+  const std::size_t n = net.node_count();
+  ImplicitSystem system(net);
+  ClothState at = in;
+  std::vector<double> r(3 * n), dv(3 * n);
+  NodeVectors f(n);
+  for (int it = 0; it < 100; ++it) {
+    for (std::size_t i = 0; i < n; ++i)
+      at.set_position(i, in.position(i) + h * at.velocity(i));
+    net.net_forces(at, f);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = net.mass(i), free = net.masses.free[i];
+      const Vec3 res = h * (f.at(i) + m * net.gravity) - m * (at.velocity(i) - in.velocity(i));
+      for (int c = 0; c < 3; ++c)
+        r[3 * i + c] = free * res[c];
+    }
+    system.linearise(net, at, true);
+    std::fill(dv.begin(), dv.end(), 0.0);
+    system.solve(net, 1.0, h, h * h, r, dv, 1e-14, 10000);
+    for (std::size_t i = 0; i < n; ++i)
+      at.set_velocity(i, at.velocity(i) + Vec3(dv[3 * i], dv[3 * i + 1], dv[3 * i + 2]));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    at.set_position(i, in.position(i) + h * at.velocity(i));
+  return at;
+}
+
+ClothState projective_step(const ClothNetwork& net, const ClothState& in, double h,
+                           int iterations) {
+  const auto integrator =
+      make_integrator(IntegratorKind::projective, net, kDefaultMinStepFraction, iterations);
+  NodeVectors f(net.node_count());
+  net.net_forces(in, f);
+  ClothState out = in;
+  // The first step measures how fast plain iterations converge; the second,
+  // from the same state, is Chebyshev-accelerated by that rate.
+  integrator->step(net, ForceInputs{}, in, f, h, out);
+  integrator->step(net, ForceInputs{}, in, f, h, out);
+  return out;
+}
+
+void converges_to_backward_euler(bool stiffening) {
+  const Moving m = moving_cloth(8, stiffening);
+  const double h = 1.0 / 60;
+  const ClothState reference = backward_euler(m.net, m.state, h);
+  ASSERT_LT(backward_euler_residual(m.net, m.state, reference, h), 1e-9);
+  // The step itself moves the cloth by centimetres: the errors below are small against it.
+  const double moved = max_difference(reference, m.state);
+  ASSERT_GT(moved, 1e-3);
+  std::vector<double> errors;
+  for (int iterations : {2, 8, 32, 128, 512}) {
+    errors.push_back(max_difference(projective_step(m.net, m.state, h, iterations), reference));
+    if (errors.size() > 1) {
+      EXPECT_LT(errors.back(), errors[errors.size() - 2]) << iterations;
+    }
+  }
+  if (stiffening)  // the matrix holds the stiff branch everywhere: slower, still converging
+    EXPECT_LT(errors.back(), 0.1 * errors.front());
+  else
+    EXPECT_LT(errors.back(), 1e-7 * moved) << "512 iterations";
+}
+
+TEST(Projective, ConvergesToBackwardEulerAsItsIterationsGrow) {
+  converges_to_backward_euler(false);
+}
+
+TEST(Projective, ConvergesToBackwardEulerOnStiffeningSprings) {
+  converges_to_backward_euler(true);
+}
+
+TEST(Projective, RefactorsWhenAWeightChanges) {
+  Moving m = moving_cloth(6);
+  const double h = 1.0 / 60;
+  const auto used = make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 64);
+  NodeVectors f(m.net.node_count());
+  ClothState out = m.state, fresh_out = m.state;
+  m.net.net_forces(m.state, f);
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);
+  const ClothState before = out;
+  for (double& k : m.net.springs.stiffness)  // a material slider moves
+    k *= 3;
+  m.net.net_forces(m.state, f);
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);
+  // An integrator that never saw the old weights steps to the same bits; a
+  // stale factor (or a stale convergence rate) would not.
+  const auto fresh =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 64);
+  fresh->step(m.net, ForceInputs{}, m.state, f, h, fresh_out);
+  EXPECT_EQ(max_difference(out, fresh_out), 0.0);
+  EXPECT_GT(max_difference(out, before), 1e-6);  // and the change mattered
+}
+
+// The Laplacian solve against a dense solve of the same matrix.
+TEST(SpringLaplacian, SolvesItsMatrix) {
+  const Moving m = moving_cloth(5);
+  const std::size_t n = m.net.node_count();
+  std::vector<double> node(n), spring(m.net.spring_count());
+  for (std::size_t i = 0; i < n; ++i)
+    node[i] = 0.01 * (1 + 0.1 * static_cast<double>(i % 3));
+  for (std::size_t s = 0; s < spring.size(); ++s)
+    spring[s] = 0.5 + 0.01 * static_cast<double>(s % 7);
+  SpringLaplacian P;
+  ASSERT_TRUE(P.factor(m.net.springs, node, spring, m.net.masses.free));
+  std::vector<double> xyz(3 * n), rhs(3 * n);
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    xyz[i] = rhs[i] = std::cos(1.3 * static_cast<double>(i));
+  P.solve3(xyz.data());
+  // P x, row by row, from the matrix's definition.
+  std::vector<double> px(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      px[3 * i + c] = (m.net.masses.free[i] != 0.0 ? node[i] : 1.0) * xyz[3 * i + c];
+  for (std::size_t s = 0; s < spring.size(); ++s) {
+    const int a = m.net.springs.node_a[s], b = m.net.springs.node_b[s];
+    const bool fa = m.net.masses.free[a] != 0.0, fb = m.net.masses.free[b] != 0.0;
+    for (int c = 0; c < 3; ++c) {
+      if (fa) px[3 * a + c] += spring[s] * (xyz[3 * a + c] - (fb ? xyz[3 * b + c] : 0.0));
+      if (fb) px[3 * b + c] += spring[s] * (xyz[3 * b + c] - (fa ? xyz[3 * a + c] : 0.0));
+    }
+  }
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    EXPECT_NEAR(px[i], rhs[i], 1e-12) << i;
+  // A free cloth without mass has no factor (and says so).
+  std::vector<double> none(n, 0.0), all_free(n, 1.0);
+  EXPECT_FALSE(P.factor(m.net.springs, none, spring, all_free));
+  EXPECT_FALSE(P.factored());
+}
+
+}  // namespace
+}  // namespace neurocloth
