@@ -1,7 +1,7 @@
 # The UI's own checks (range refusal, requests, the script player's timing):
 # no window needed.
 add_executable(ui_tests ui_values_test.cpp ui_requests_test.cpp script_player_test.cpp
-  accuracy_control_test.cpp
+  accuracy_control_test.cpp membership_plot_test.cpp
   ${PROJECT_SOURCE_DIR}/src/app/viewer_script_player.cpp)
 target_include_directories(ui_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/app)
 target_link_libraries(ui_tests PRIVATE neurocloth_ui neurocloth_core GTest::gtest_main)

@@ -98,14 +98,22 @@ void ViewerApp::frame(double elapsed) {
   draw(status, *snapshot);
   if (last_drawn_ >= 0) stats_.frame(wall, wall - last_drawn_);
   last_drawn_ = wall;
-  pace(wall);
+  pace();
 }
 
 // Sleeps out the rest of a frame under the fps cap: the core is the simulation's.
-void ViewerApp::pace(double frame_start) {
+// The frames keep to a fixed schedule, so a sleep that overruns is taken back
+// from the next one and the cap is the average rate; a frame that ends past its
+// slot starts a new schedule rather than a burst of frames to catch up.
+void ViewerApp::pace() {
   if (options_.max_fps <= 0) return;
-  const double left = frame_start + 1 / options_.max_fps - seconds_since_start();
-  if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+  next_frame_ += 1 / options_.max_fps;
+  const double now = seconds_since_start();
+  if (next_frame_ <= now) {
+    next_frame_ = now;
+    return;
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(next_frame_ - now));
 }
 
 // Keeps the UI's copy of the scene and its values in step with what runs.

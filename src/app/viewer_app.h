@@ -41,7 +41,7 @@ class ViewerApp : private ScriptPlayer::Target {
   // `elapsed`: the script's clock (simulated s under --lockstep, else wall s).
   void frame(double elapsed);
   void post(SimCommand command);  // to the simulation thread
-  void pace(double frame_start);
+  void pace();
   double seconds_since_start() const;
   void follow(const SimulationStatus& status, const FrameSnapshot& snapshot);
   void carry_out_requests(const FrameSnapshot& snapshot);
@@ -91,6 +91,7 @@ class ViewerApp : private ScriptPlayer::Target {
   std::chrono::steady_clock::time_point start_;  // the first frame
   double elapsed_ = 0;      // the script's clock at this frame (simulated s under --lockstep)
   double last_drawn_ = -1;  // wall s
+  double next_frame_ = 0;   // wall s: when the fps cap lets the next frame start
   std::string reported_ui_error_, reported_sim_error_;
 };
 

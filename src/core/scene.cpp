@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -308,6 +309,21 @@ Scene load_scene(const std::string& path) {
   return parse_scene(read_text_file(path, "scene file", kMaxSceneBytes), path);
 }
 
+namespace {
+double cloth_area(const ClothTopology& t) {
+  const std::vector<double> area = lumped_node_areas(t);
+  return std::accumulate(area.begin(), area.end(), 0.0);
+}
+}  // namespace
+
+double cloth_mass(const Scene& scene) {
+  const ClothNetwork net = scene.build_network();
+  double mass = 0;
+  for (std::size_t i = 0; i < net.node_count(); ++i)
+    mass += net.mass(i);
+  return mass;
+}
+
 Scene resized_grid(const Scene& scene, int n) {
   if (!scene.grid || n < 2)
     throw std::invalid_argument("resized_grid needs a grid scene and n >= 2");
@@ -323,6 +339,19 @@ Scene resized_grid(const Scene& scene, int n) {
   // Node indices of the old grid mean nothing on the new one: moving pins move the new pins.
   for (ModuleDeclaration& m : s.modules)
     if (auto* motion = std::get_if<PinMotionSpec>(&m.spec)) motion->nodes = s.pins;
+  const double mass = cloth_mass(scene);
+  s.resized_from = Scene::Resizing{scene.grid->rows, scene.grid->cols, mass};
+  // A rule base's node_mass is per area already; a numeric one is per node, so
+  // it is spread over the new nodes. A line of nodes (a chain) has no area: it
+  // keeps its total mass.
+  if (!scene.fuzzy_material) {
+    const double area = cloth_area(scene.topology);
+    const double kept = area > 0 ? mass * cloth_area(s.topology) / area : mass;
+    s.material.node_mass = kept / (static_cast<double>(n) * n);
+    if (const auto why = material_outside_limits(s.material))
+      throw std::invalid_argument("resized to " + std::to_string(n) + " x " + std::to_string(n) +
+                                  ", the cloth's material " + *why);
+  }
   return s;
 }
 

@@ -48,6 +48,13 @@ struct Scene {
   // "element_weights" (a fit's output, element_weights.h): applied over the
   // material's when the network is built. Read once and shared, like the rule base.
   std::shared_ptr<const ElementWeights> element_weights;
+  // Set by resized_grid: the grid the cloth had before, and what it weighed
+  // there (kg), so a panel can say what the resizing kept.
+  struct Resizing {
+    int rows = 0, cols = 0;
+    double mass = 0;
+  };
+  std::optional<Resizing> resized_from;
 
   // The bare network: springs, masses, gravity, pins (no modules).
   ClothNetwork build_network() const;
@@ -56,11 +63,20 @@ struct Scene {
   Simulation make_simulation() const;
 };
 
-// The same cloth (width, material, solver) on an n x n grid with all three
-// spring families, pinned (if it was pinned) at the two corners of its first row (which a
-// pin_motion module then moves), with the scene's modules: what the benchmarks
-// time at several sizes. `scene` must be a grid scene; n >= 2.
+// The same cloth on an n x n grid with all three spring families, pinned (if
+// it was pinned) at the two corners of its first row (which a pin_motion module
+// then moves), with the scene's modules and solver: what `--size` runs and the
+// benchmarks time at several sizes. The cloth keeps its width (its longer side)
+// and its mass per area, so a square cloth weighs what it did: a material in
+// words already weighs by area, a numeric one gets node_mass = mass / n^2.
+// Spring constants and damping per spring are kept (on a square grid the
+// sheet's in-plane stiffness and damping per unit strain do not depend on the
+// spacing; docs/scenes.md, "Resizing"). `scene` must be a grid scene; n >= 2.
 Scene resized_grid(const Scene& scene, int n);
+
+// kg: the cloth's node masses summed as its network has them (element
+// weights and a rule base's shares by area included).
+double cloth_mass(const Scene& scene);
 
 // Throws InputError (file, field, line) for anything wrong; never returns a
 // half-read scene.

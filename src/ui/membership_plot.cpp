@@ -1,6 +1,7 @@
 #include "membership_plot.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "fuzzy_view.h"
@@ -18,7 +19,24 @@ ImU32 term_colour(int term) {
   return palette[term % static_cast<int>(std::size(palette))];
 }
 
+bool piecewise_linear(fuzzy::Shape shape) {
+  return shape == fuzzy::Shape::points || shape == fuzzy::Shape::triangle ||
+         shape == fuzzy::Shape::trapezoid;
+}
+
 }  // namespace
+
+int drop_collinear(ImVec2* p, int n) {
+  if (n < 3) return n;
+  int kept = 1;
+  for (int s = 1; s + 1 < n; ++s) {
+    const ImVec2 a = p[kept - 1], b = p[s], c = p[s + 1];
+    const float cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    if (std::abs(cross) > 0.05f * std::hypot(c.x - a.x, c.y - a.y)) p[kept++] = b;
+  }
+  p[kept++] = p[n - 1];
+  return kept;
+}
 
 void membership_plot(const fuzzy::LinguisticVariable& variable, double value, ImVec2 size) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -46,7 +64,10 @@ void membership_plot(const fuzzy::LinguisticVariable& variable, double value, Im
       ImVec2 points[kSamples];
       for (int s = 0; s < kSamples; ++s)
         points[s] = ImVec2(lo.x + size.x * s / (kSamples - 1), py(mu[s]));
-      draw->AddPolyline(points, kSamples, colour, 0, 1.5f);
+      // A smooth term keeps every sample: points dropped by their neighbours
+      // alone could add up to a visible error along a gentle curve.
+      const int count = piecewise_linear(f.shape) ? drop_collinear(points, kSamples) : kSamples;
+      draw->AddPolyline(points, count, colour, 0, 1.5f);
     }
   }
   // The current value, clamped into view (inference clamps it the same way).

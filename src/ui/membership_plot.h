@@ -12,4 +12,13 @@ namespace neurocloth {
 // curve and are named instead.
 void membership_plot(const fuzzy::LinguisticVariable& variable, double value, ImVec2 size);
 
+// Keeps the first and last of `n` points and those off the line from the last
+// kept point to the next one by more than a twentieth of a pixel, in place;
+// returns how many. A piecewise-linear term's samples lie on a few segments, so
+// its curve draws the same with a handful of them. ImGui draws a thick
+// anti-aliased segment as six triangles and llvmpipe pays for each: with every
+// sample, the Material panel's curves were 15k triangles, half of a 128x128
+// cloth's (docs/rendering.md, "Cost").
+int drop_collinear(ImVec2* points, int n);
+
 }  // namespace neurocloth

@@ -1,6 +1,35 @@
 #include "scene_info.h"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace neurocloth {
+
+namespace {
+
+std::string describe_cloth(const Scene& scene, double mass) {
+  char line[256];
+  if (!scene.grid) {
+    std::snprintf(line, sizeof line, "mesh, %zu nodes, %.3g kg",
+                  scene.topology.rest_positions.size(), mass);
+    return line;
+  }
+  const GridSpec& g = *scene.grid;
+  const double width = g.spacing * (std::max(g.rows, g.cols) - 1);
+  int n = std::snprintf(line, sizeof line, "%d x %d nodes, %.3g m wide, %.3g kg", g.rows, g.cols,
+                        width, mass);
+  if (const auto& from = scene.resized_from) {
+    // Equal for a square cloth; one squared from a rectangle keeps its mass per area.
+    const bool kept = from->rows == from->cols;
+    std::snprintf(line + n, sizeof line - n,
+                  kept ? "; resized from %d x %d, width and total mass kept"
+                       : "; resized from %d x %d, longer side and mass per area kept",
+                  from->rows, from->cols);
+  }
+  return line;
+}
+
+}  // namespace
 
 SceneInfo::SceneInfo(const Scene& scene)
     : name_(scene.name),
@@ -17,6 +46,10 @@ SceneInfo::SceneInfo(const Scene& scene)
   for (std::size_t i = 0; i < node_mass_.size(); ++i)
     node_mass_[i] = net.mass(i);
   mass_share_ = net.mass_share;
+  double mass = 0;
+  for (double m : node_mass_)
+    mass += m;
+  cloth_summary_ = describe_cloth(scene, mass);
   if (scene.fuzzy_material && scene.fuzzy_material->rules)
     fuzzy_.emplace(scene.fuzzy_material->rules_path, scene.fuzzy_material->rules);
 }

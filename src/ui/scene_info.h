@@ -23,6 +23,9 @@ class SceneInfo {
   const std::string& name() const { return name_; }
   const std::string& path() const { return path_; }
   std::size_t node_count() const { return node_mass_.size(); }
+  // One line on the cloth: its grid, width and mass, and what a resizing
+  // (`--size`) kept.
+  const std::string& cloth_summary() const { return cloth_summary_; }
   const std::vector<ParameterRange>& ranges() const { return ranges_; }
   // The simulation thread's ranges for what runs now (they change with LoadRules).
   void set_ranges(std::vector<ParameterRange> ranges) { ranges_ = std::move(ranges); }
@@ -44,7 +47,7 @@ class SceneInfo {
   const std::optional<FuzzyView>& fuzzy() const { return fuzzy_; }
 
  private:
-  std::string name_, path_;
+  std::string name_, path_, cloth_summary_;
   ParameterNames names_;
   std::vector<ParameterRange> ranges_;
   std::vector<double> node_mass_, mass_share_;

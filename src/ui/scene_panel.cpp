@@ -44,7 +44,8 @@ void modules(const SimulationStatus& s) {
 void scene_panel(PanelContext& ctx) {
   const SimulationStatus& s = ctx.status;
   ImGui::Text("%s", s.scene_name.c_str());
-  ImGui::TextDisabled("%s (%zu nodes)", s.scene_path.c_str(), ctx.scene.node_count());
+  ImGui::TextDisabled("%s", s.scene_path.c_str());
+  ImGui::TextWrapped("%s", ctx.scene.cloth_summary().c_str());
   ImGui::SetNextItemWidth(280);
   ImGui::InputText("##scene", ctx.values.scene_path.data(), ctx.values.scene_path.size());
   ImGui::SameLine();
