@@ -11,6 +11,7 @@
 #include "integrator.h"
 #include "physical_limits.h"
 #include "step_controller.h"
+#include "step_threads.h"
 
 namespace neurocloth {
 
@@ -49,6 +50,10 @@ struct SolverSettings {
   // divergence then says it was too large); the live simulation thread turns it
   // on, so a change made while the cloth moves cannot make it explode.
   bool substep_above_cap = false;
+  // Threads that share each sweep of a step on a cloth of at least
+  // kMinThreadedNodes nodes (step_threads.h). The results are bit-identical
+  // to one thread's; only the wall time changes. 1: the calling thread alone.
+  int threads = 1;
 };
 
 // Throws std::invalid_argument naming the first field out of its range
@@ -79,6 +84,9 @@ inline void validate(const SolverSettings& s) {
   if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
   if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);
   if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
+  if (s.threads < 1 || s.threads > kMaxStepThreads)
+    fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
+         static_cast<double>(s.threads));
 }
 
 }  // namespace neurocloth
