@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       "Blender's Mesh Cache modifier (docs/learning.md)");
   simulate->add_option("--threads", sim.threads,
                        "Threads sharing each step (results are identical; default 2 on a cloth "
-                       "of 64x64 nodes or more when the machine has two cores, else 1)");
+                       "of 64x64 nodes or more when the machine has an idle second core, else 1)");
   simulate->add_option("--record-fps", sim.record_fps,
                        "Frames per simulated second for --record and --export-pc2 (default 60)");
 

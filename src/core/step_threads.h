@@ -28,7 +28,8 @@ inline constexpr std::size_t kMinThreadedNodes = 64 * 64;
 
 // Threads for a batch someone waits for (simulate, tradeoff, the viewer's
 // --sim-only): two on a cloth of at least kMinThreadedNodes nodes when the
-// machine has two cores, else one.
+// machine has two cores and at least one of them idle (the 1-minute load
+// average below cores - 1), else one. Results do not depend on it.
 int batch_step_threads(std::size_t nodes);
 
 // The first node of part `part` of `parts`: a multiple of 8, so no two parts
