@@ -6,8 +6,6 @@
 // and quote the medians: this machine is shared and noisy.
 #include <benchmark/benchmark.h>
 
-#include <vector>
-
 #include "step_bench.h"
 
 namespace neurocloth {
@@ -51,49 +49,17 @@ void BM_ShuffledMeshStep(benchmark::State& st) {
 }
 BENCHMARK(BM_ShuffledMeshStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 
-// The reference the brief measures against: a straightforward scalar loop over
-// springs (array of structs, sqrt and a division, scatter-adds) plus the same
-// semi-implicit Euler node update. Same cloth, same arithmetic, no layout work.
+// The reference (step_bench.h): what the network step is measured against.
 void BM_ReferenceScalarStep(benchmark::State& st) {
-  const int n = static_cast<int>(st.range(0));
-  const StepBench bench(bare_cloth(n), IntegratorKind::network);
-  const ClothNetwork& net = bench.simulation().network();
-  const double dt = bench.dt();
-  struct Spring {
-    int a, b;
-    double rest, k, d;
-  };
-  std::vector<Spring> springs;
-  for (std::size_t s = 0; s < net.spring_count(); ++s)
-    springs.push_back({net.springs.node_a[s], net.springs.node_b[s], net.springs.rest_length[s],
-                       net.springs.stiffness[s], net.springs.damping[s]});
-  std::vector<Vec3> p(net.node_count()), v(net.node_count(), Vec3::Zero()), f(net.node_count());
-  for (std::size_t i = 0; i < p.size(); ++i)
-    p[i] = bench.simulation().state().position(i);
+  const StepBench bench(bare_cloth(static_cast<int>(st.range(0))), IntegratorKind::network);
+  ReferenceStep reference(bench);
   for (auto _ : st) {
-    for (int step = 0; step < 16; ++step) {
-      for (auto& fi : f)
-        fi = Vec3::Zero();
-      for (const Spring& s : springs) {
-        const Vec3 d = p[s.b] - p[s.a];
-        const double len = d.norm();
-        if (len <= 1e-12) continue;
-        const Vec3 u = d / len;
-        const Vec3 force = (s.k * (len - s.rest) + s.d * (v[s.b] - v[s.a]).dot(u)) * u;
-        f[s.a] += force;
-        f[s.b] -= force;
-      }
-      for (std::size_t i = 0; i < p.size(); ++i) {
-        const double free = net.masses.free[i];
-        v[i] += dt * free * (net.masses.inverse_mass[i] * f[i] + net.gravity);
-        p[i] += dt * v[i];
-      }
-    }
-    benchmark::DoNotOptimize(p.data());
+    reference.run(StepBench::kFrameSteps);
+    benchmark::DoNotOptimize(reference.positions().data());
   }
-  st.counters["ns_per_spring"] =
-      benchmark::Counter(static_cast<double>(springs.size()) * 16 * st.iterations() * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  st.counters["ns_per_spring"] = benchmark::Counter(
+      static_cast<double>(reference.springs()) * StepBench::kFrameSteps * st.iterations() * 1e-9,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_ReferenceScalarStep)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 

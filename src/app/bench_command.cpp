@@ -1,11 +1,13 @@
 // `neurocloth-cli bench`: the one step benchmark (step_bench.h: the default
 // scene's cloth resized to N x N, stepped by the rule build/step_benchmark
 // uses), timed by the wall clock through the same Simulation the other
-// commands use, divergence checks included. Reports the median over repeats:
-// this machine is shared and noisy.
+// commands use, divergence checks included, beside the plain reference loop.
+// Reports medians over repeats: this machine is shared and noisy.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +18,14 @@
 
 namespace neurocloth {
 namespace {
+
+// CPU seconds the calling thread has used: what a step costs it, whatever
+// else the shared machine runs meanwhile.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -38,15 +48,28 @@ int run_bench(const BenchOptions& o) {
     throw InputError(
         "command line", "--integrator",
         "unknown integrator '" + o.integrator + "' (expected one of: " + integrator_names() + ")");
-  StepBench bench(bare_cloth(o.size), *kind);
+  if (o.threads < 1 || o.threads > kMaxStepThreads)
+    throw InputError("command line", "--threads",
+                     "must be in [1, " + std::to_string(kMaxStepThreads) + "]");
+  StepBench bench(bare_cloth(o.size), *kind, o.threads);
+  // The reference loop (step_bench.h), timed in the same runs: the ratio of
+  // the two medians says what the step's layout buys under this run's load.
+  ReferenceStep reference(bench);
   bench.run(10);  // warm-up: caches, page faults
-  std::vector<double> rates;
+  reference.run(10);
+  std::vector<double> rates, cpu_rates, reference_rates;
   for (int r = 0; r < o.repeat; ++r) {
-    const auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
+    const double cpu_start = thread_cpu_seconds();
     const long taken = bench.run(o.steps);
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpu = thread_cpu_seconds() - cpu_start;
+    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     rates.push_back(static_cast<double>(taken) / wall);
+    cpu_rates.push_back(static_cast<double>(taken) / cpu);
+    start = std::chrono::steady_clock::now();
+    reference.run(o.steps);
+    wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    reference_rates.push_back(static_cast<double>(o.steps) / wall);
   }
   const Simulation& sim = bench.simulation();
   if (sim.status() != RunStatus::ok) {
@@ -57,25 +80,35 @@ int run_bench(const BenchOptions& o) {
   const double sps = median(rates);
   const double springs = static_cast<double>(sim.network().spring_count());
   const double ns = 1e9 / (sps * springs);
+  const double reference_ns = 1e9 / (median(reference_rates) * springs);
+  const double cpu_ns = 1e9 / (median(cpu_rates) * springs);
   if (o.json) {
     nlohmann::json doc = {{"size", o.size},
                           {"nodes", sim.network().node_count()},
                           {"springs", sim.network().spring_count()},
                           {"integrator", o.integrator},
+                          {"threads", o.threads},
                           {"dt", bench.dt()},
                           {"steps", o.steps},
                           {"repeat", o.repeat},
                           {"steps_per_second", sps},
                           {"ns_per_spring_update", ns},
                           {"steps_per_second_all", rates},
+                          {"calling_thread_cpu_ns_per_spring_update", cpu_ns},
+                          {"reference_ns_per_spring_update", reference_ns},
+                          {"reference_ratio", reference_ns / ns},
                           {"statistic", "median"}};
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
-    std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, dt %.3g s\n", o.size, o.size,
+    std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, dt %.3g s, %d thread%s\n", o.size, o.size,
                 sim.network().node_count(), sim.network().spring_count(), o.integrator.c_str(),
-                bench.dt());
+                bench.dt(), o.threads, o.threads == 1 ? "" : "s");
     std::printf("  median of %d runs of %d steps: %.1f steps/s, %.3f ns per spring update\n",
                 o.repeat, o.steps, sps, ns);
+    std::printf("  CPU time of the calling thread: %.3f ns per spring update\n", cpu_ns);
+    std::printf(
+        "  reference scalar loop, same runs: %.3f ns per spring update (%.2fx the step's)\n",
+        reference_ns, reference_ns / ns);
   }
   return kExitOk;
 }

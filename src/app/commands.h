@@ -42,6 +42,9 @@ struct SimulateOptions {
   std::optional<std::string> record;
   std::optional<std::string> export_pc2;
   std::optional<double> record_fps;  // default 60
+  // --threads N: threads sharing each step (results identical); default
+  // batch_step_threads (step_threads.h).
+  std::optional<int> threads;
 };
 int run_simulate(const SimulateOptions& options);
 
@@ -79,6 +82,7 @@ struct BenchOptions {
   int steps = 200;
   int repeat = 5;
   std::string integrator = "network";
+  int threads = 1;  // SolverSettings::threads
   bool json = false;
 };
 int run_bench(const BenchOptions& options);

@@ -119,6 +119,11 @@ int run_simulate(const SimulateOptions& o) {
   }
   if (o.adaptive) scene.solver.adaptive = true;
   if (o.fixed_step) scene.solver.adaptive = false;
+  if (o.threads && (*o.threads < 1 || *o.threads > kMaxStepThreads))
+    throw InputError("command line", "--threads",
+                     "must be in [1, " + std::to_string(kMaxStepThreads) + "]");
+  scene.solver.threads =
+      o.threads ? *o.threads : batch_step_threads(scene.topology.rest_positions.size());
 
   if (!(o.progress >= 0) || !std::isfinite(o.progress))
     throw InputError("command line", "--progress", "must be a finite number >= 0 (wall seconds)");

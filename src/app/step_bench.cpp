@@ -86,14 +86,58 @@ Scene bare_shuffled_mesh_cloth(int n) {
   return read_back_as_mesh(std::move(scene), shuffled);
 }
 
-StepBench::StepBench(const Scene& scene, IntegratorKind integrator)
-    : sim_(with_bench_step(scene, integrator).make_simulation()) {}
+namespace {
+Scene with_threads(Scene scene, int threads) {
+  scene.solver.threads = threads;
+  return scene;
+}
+}  // namespace
+
+StepBench::StepBench(const Scene& scene, IntegratorKind integrator, int threads)
+    : sim_(with_threads(with_bench_step(scene, integrator), threads).make_simulation()) {}
 
 long StepBench::run(long steps) {
   const long before = sim_.steps();
   for (long left = steps; left > 0 && sim_.status() == RunStatus::ok; left -= kFrameSteps)
     sim_.advance(static_cast<double>(std::min(left, kFrameSteps)) * dt());
   return sim_.steps() - before;
+}
+
+ReferenceStep::ReferenceStep(const StepBench& bench) {
+  const ClothNetwork& net = bench.simulation().network();
+  for (std::size_t s = 0; s < net.spring_count(); ++s)
+    springs_.push_back({net.springs.node_a[s], net.springs.node_b[s], net.springs.rest_length[s],
+                        net.springs.stiffness[s], net.springs.damping[s]});
+  const std::size_t n = net.node_count();
+  p_.resize(n);
+  v_.assign(n, Vec3::Zero());
+  f_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    p_[i] = bench.simulation().state().position(i);
+  inverse_mass_ = net.masses.inverse_mass;
+  free_ = net.masses.free;
+  gravity_ = net.gravity;
+  dt_ = bench.dt();
+}
+
+void ReferenceStep::run(long steps) {
+  for (long step = 0; step < steps; ++step) {
+    for (auto& fi : f_)
+      fi = Vec3::Zero();
+    for (const Spring& s : springs_) {
+      const Vec3 d = p_[s.b] - p_[s.a];
+      const double len = d.norm();
+      if (len <= 1e-12) continue;
+      const Vec3 u = d / len;
+      const Vec3 force = (s.k * (len - s.rest) + s.d * (v_[s.b] - v_[s.a]).dot(u)) * u;
+      f_[s.a] += force;
+      f_[s.b] -= force;
+    }
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      v_[i] += dt_ * free_[i] * (inverse_mass_[i] * f_[i] + gravity_);
+      p_[i] += dt_ * v_[i];
+    }
+  }
 }
 
 }  // namespace neurocloth

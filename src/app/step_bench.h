@@ -4,6 +4,7 @@
 // starts from. The cloth is the default scene's (the table drape) resized to
 // N x N, so every table in README's "Speed" speaks of the same cloth.
 #include <string>
+#include <vector>
 
 #include "scene.h"
 
@@ -32,7 +33,9 @@ Scene bare_shuffled_mesh_cloth(int n);
 // viewer frame: the end-of-advance checks weigh what they weigh in use).
 class StepBench {
  public:
-  StepBench(const Scene& scene, IntegratorKind integrator);
+  // `threads` share each sweep (SolverSettings::threads; the results do not
+  // depend on it).
+  StepBench(const Scene& scene, IntegratorKind integrator, int threads = 1);
   // Takes about `steps` steps and returns how many it took.
   long run(long steps);
   static constexpr long kFrameSteps = 16;
@@ -43,6 +46,29 @@ class StepBench {
 
  private:
   Simulation sim_;
+};
+
+// The reference the step is measured against: a straightforward scalar loop
+// over springs (array of structs, sqrt and a division, scatter-adds) plus the
+// same semi-implicit Euler node update, on the network's cloth at the
+// benchmark's step. Same arithmetic, no layout work, one thread.
+class ReferenceStep {
+ public:
+  explicit ReferenceStep(const StepBench& bench);
+  void run(long steps);
+  std::size_t springs() const { return springs_.size(); }
+  const std::vector<Vec3>& positions() const { return p_; }
+
+ private:
+  struct Spring {
+    int a, b;
+    double rest, k, d;
+  };
+  std::vector<Spring> springs_;
+  std::vector<Vec3> p_, v_, f_;
+  std::vector<double> inverse_mass_, free_;
+  Vec3 gravity_;
+  double dt_;
 };
 
 }  // namespace neurocloth

@@ -67,8 +67,11 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   return plan;
 }
 
-TradeTable measure_trade(const Scene& scene, const std::string& scene_file,
+TradeTable measure_trade(const Scene& shipped, const std::string& scene_file,
                          const TradeoffPlan& plan) {
+  // Every run of the sweep, the reference too, shares its steps alike.
+  Scene scene = shipped;
+  scene.solver.threads = batch_step_threads(scene.topology.rest_positions.size());
   return measure_tradeoff(scene, scene_file, plan,
                           [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
 }

@@ -10,8 +10,11 @@
 
 namespace neurocloth {
 
-int run_sim_only(const Scene& scene, const ViewerOptions& options) {
+int run_sim_only(const Scene& shipped, const ViewerOptions& options) {
   using Clock = std::chrono::steady_clock;
+  // No window draws beside it: the step may have both cores.
+  Scene scene = shipped;
+  scene.solver.threads = batch_step_threads(scene.topology.rest_positions.size());
   SimulationThread sim(scene);
   FrameStats stats;
   const Clock::time_point start = Clock::now();

@@ -1,7 +1,9 @@
 #include "cloth_network.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 #include "reciprocal_sqrt.h"
@@ -140,19 +142,29 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
   }
 }
 
+// The spring layer's contributions to the acceleration neurons of nodes
+// [lo, hi): every chunk that writes one of them, in the one chunk order. A
+// chunk wholly inside adds its outputs directly (or through accumulate_chunk);
+// a chunk that crosses lo or hi is evaluated by every part it touches, and
+// each adds only to its own nodes (step_threads.h).
 template <SpringFunctionKind K>
-void propagate_all(const ClothNetwork& net, const ClothState& s, NodeVectors& F) {
+void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F, std::int32_t lo,
+                    std::int32_t hi) {
   Chunk chunk;
+  const std::array<double*, 3> dst{F.x.data(), F.y.data(), F.z.data()};
   for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
                                   std::int32_t b, bool direct) {
-    if (direct) {
+    const bool a_inside = a >= lo && a + count <= hi;
+    const bool b_inside = b >= lo && b + count <= hi;
+    if (direct && a_inside && b_inside) {
       propagate_chunk<K, true>(net.springs, first, count, a, b, s, F.x.data() + a, F.y.data() + a,
                                F.z.data() + a);
-    } else {
-      propagate_chunk<K, false>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
-      accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz,
-                       {F.x.data(), F.y.data(), F.z.data()});
+      return;
     }
+    const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
+    if (!touches) return;
+    propagate_chunk<K, false>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
+    accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
   });
 }
 
@@ -168,30 +180,37 @@ void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations
 }  // namespace
 
 void ClothNetwork::other_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
-  external_force(in, F);
+  external_force(in, F, 0, node_count());
   add_module_forces(s, in, F);
 }
 
-void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F) const {
-  // External force is the acceleration neurons' bias input.
+// External force is the acceleration neurons' bias input: F = f_ext (or 0) on nodes [lo, hi).
+void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F, std::size_t lo,
+                                  std::size_t hi) const {
   const NodeVectors& ext = in.external_force;
+  const auto from = static_cast<std::ptrdiff_t>(lo), to = static_cast<std::ptrdiff_t>(hi);
   if (ext.size() == 0) {
-    std::fill(F.x.begin(), F.x.end(), 0.0);
-    std::fill(F.y.begin(), F.y.end(), 0.0);
-    std::fill(F.z.begin(), F.z.end(), 0.0);
+    std::fill(F.x.begin() + from, F.x.begin() + to, 0.0);
+    std::fill(F.y.begin() + from, F.y.begin() + to, 0.0);
+    std::fill(F.z.begin() + from, F.z.begin() + to, 0.0);
   } else {
-    std::copy(ext.x.begin(), ext.x.end(), F.x.begin());
-    std::copy(ext.y.begin(), ext.y.end(), F.y.begin());
-    std::copy(ext.z.begin(), ext.z.end(), F.z.begin());
+    std::copy(ext.x.begin() + from, ext.x.begin() + to, F.x.begin() + from);
+    std::copy(ext.y.begin() + from, ext.y.begin() + to, F.y.begin() + from);
+    std::copy(ext.z.begin() + from, ext.z.begin() + to, F.z.begin() + from);
   }
 }
 
 void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
-  external_force(in, F);
-  if (springs.function.kind == SpringFunctionKind::linear)
-    propagate_all<SpringFunctionKind::linear>(*this, s, F);
-  else
-    propagate_all<SpringFunctionKind::stiffening>(*this, s, F);
+  const bool linear = springs.function.kind == SpringFunctionKind::linear;
+  for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+    external_force(in, F, lo, hi);
+    const auto first = static_cast<std::int32_t>(lo), last = static_cast<std::int32_t>(hi);
+    if (linear)
+      propagate_part<SpringFunctionKind::linear>(*this, s, F, first, last);
+    else
+      propagate_part<SpringFunctionKind::stiffening>(*this, s, F, first, last);
+  });
+  // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);
 }
 

@@ -85,6 +85,8 @@ class ClothNetwork {
   // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1), plus whatever the
   // force modules add. Allocates nothing.
   // A spring shorter than kMinSpringLength contributes no force (no direction).
+  // The springs' sweep is split over inputs.threads when it is set (the same
+  // bits as on one thread, step_threads.h).
   void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // The same with no external force, at time 0.
   void net_forces(const ClothState& state, NodeVectors& force) const;
@@ -107,7 +109,8 @@ class ClothNetwork {
   ClothState rest_state(const std::vector<Vec3>& positions) const;
 
  private:
-  void external_force(const ForceInputs& inputs, NodeVectors& force) const;  // fills `force`
+  void external_force(const ForceInputs& inputs, NodeVectors& force, std::size_t lo,
+                      std::size_t hi) const;
   void add_module_forces(const ClothState& state, const ForceInputs& inputs,
                          NodeVectors& force) const;
 };

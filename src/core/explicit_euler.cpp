@@ -8,7 +8,7 @@ namespace {
 
 class ExplicitEuler final : public Integrator {
  public:
-  explicit ExplicitEuler(const ClothNetwork& net) : acc_(net.node_count()) {}
+  explicit ExplicitEuler(const ClothNetwork&) {}
   IntegratorKind kind() const override { return IntegratorKind::explicit_euler; }
   std::unique_ptr<Integrator> clone() const override {
     return std::make_unique<ExplicitEuler>(*this);
@@ -16,23 +16,25 @@ class ExplicitEuler final : public Integrator {
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
 
-  StepReport step(const ClothNetwork& net, const ForceInputs&, const ClothState& in,
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors& F, double h, ClothState& out) override {
-    net.accelerations(F, acc_);
-    const std::size_t n = net.node_count();
-    for (std::size_t i = 0; i < n; ++i) {
-      out.x[i] = in.x[i] + h * in.vx[i];
-      out.y[i] = in.y[i] + h * in.vy[i];
-      out.z[i] = in.z[i] + h * in.vz[i];
-      out.vx[i] = in.vx[i] + h * acc_.x[i];
-      out.vy[i] = in.vy[i] + h * acc_.y[i];
-      out.vz[i] = in.vz[i] + h * acc_.z[i];
-    }
+    const double* w = net.masses.inverse_mass.data();
+    const double* free = net.masses.free.data();
+    const Vec3 g = net.gravity;
+    // One sweep: the acceleration neurons' outputs (ClothNetwork::accelerations)
+    // are used where they are made.
+    for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        out.x[i] = in.x[i] + h * in.vx[i];
+        out.y[i] = in.y[i] + h * in.vy[i];
+        out.z[i] = in.z[i] + h * in.vz[i];
+        out.vx[i] = in.vx[i] + h * (free[i] * (w[i] * F.x[i] + g.x()));
+        out.vy[i] = in.vy[i] + h * (free[i] * (w[i] * F.y[i] + g.y()));
+        out.vz[i] = in.vz[i] + h * (free[i] * (w[i] * F.z[i] + g.z()));
+      }
+    });
     return {1, 0, true};
   }
-
- private:
-  NodeVectors acc_;
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "cloth_state.h"
 #include "modules/module_clock.h"
+#include "step_threads.h"
 
 namespace neurocloth {
 
@@ -21,6 +22,10 @@ struct ForceInputs {
   // Wall time each force module has spent, in the network's module order. A
   // diagnostic that no result reads; kept here so a const network can be timed.
   mutable std::vector<ModuleClock> clocks;
+  // Who shares the sweeps of a step (not owned; null: the calling thread
+  // alone). Results do not depend on it (step_threads.h). A simulation points
+  // it at its own team before each step.
+  StepThreads* threads = nullptr;
 };
 
 }  // namespace neurocloth

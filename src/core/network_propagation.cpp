@@ -18,9 +18,8 @@ class NetworkPropagation final : public Integrator {
   double stability_limit() const override { return 2.0; }
   bool steps_in_place() const override { return true; }
 
-  StepReport step(const ClothNetwork& net, const ForceInputs&, const ClothState& in,
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors& F, double tc, ClothState& out) override {
-    const std::size_t n = net.node_count();
     const double* __restrict w = net.masses.inverse_mass.data();
     const double* __restrict free = net.masses.free.data();
     const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};
@@ -29,19 +28,21 @@ class NetworkPropagation final : public Integrator {
     const double* const p_in[3] = {in.x.data(), in.y.data(), in.z.data()};
     double* const v_out[3] = {out.vx.data(), out.vy.data(), out.vz.data()};
     double* const p_out[3] = {out.x.data(), out.y.data(), out.z.data()};
-    for (int c = 0; c < 3; ++c) {
-      const double* f = force[c];
-      const double* v0 = v_in[c];
-      const double* p0 = p_in[c];
-      double* v1 = v_out[c];
-      double* p1 = p_out[c];
-      // Element-wise: node i reads only index i, so in == out is safe.
+    for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+      for (int c = 0; c < 3; ++c) {
+        const double* f = force[c];
+        const double* v0 = v_in[c];
+        const double* p0 = p_in[c];
+        double* v1 = v_out[c];
+        double* p1 = p_out[c];
+        // Element-wise: node i reads only index i, so in == out is safe.
 #pragma GCC ivdep
-      for (std::size_t i = 0; i < n; ++i) {
-        v1[i] = v0[i] + tc * (free[i] * (w[i] * f[i] + g[c]));  // velocity neuron
-        p1[i] = p0[i] + tc * v1[i];                             // position neuron
+        for (std::size_t i = lo; i < hi; ++i) {
+          v1[i] = v0[i] + tc * (free[i] * (w[i] * f[i] + g[c]));  // velocity neuron
+          p1[i] = p0[i] + tc * v1[i];                             // position neuron
+        }
       }
-    }
+    });
     return {1, 0, true};
   }
 };

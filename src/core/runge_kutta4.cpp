@@ -8,7 +8,7 @@ namespace {
 class RungeKutta4 final : public Integrator {
  public:
   explicit RungeKutta4(const ClothNetwork& net)
-      : stage_(net.node_count()), acc_(net.node_count()), force_(net.node_count()) {}
+      : stage_(net.node_count()), force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::rk4; }
   std::unique_ptr<Integrator> clone() const override {
     return std::make_unique<RungeKutta4>(*this);
@@ -18,38 +18,47 @@ class RungeKutta4 final : public Integrator {
 
   StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors& F, double h, ClothState& out) override {
-    const std::size_t n = net.node_count();
+    const double* w = net.masses.inverse_mass.data();
+    const double* free = net.masses.free.data();
+    const Vec3 g = net.gravity;
     out = in;
     // k1 at the start; each later stage is evaluated at in + c * h * k_previous.
-    net.accelerations(F, acc_);
+    const NodeVectors* force = &F;    // forces of the current stage
     const ClothState* k_state = &in;  // velocities of the current stage
     const double c_next[3] = {0.5, 0.5, 1.0};
     const double weight[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
     for (int stage = 0; stage < 4; ++stage) {
-      // Accumulate this stage's slope into the result.
       const double wh = weight[stage] * h;
-      for (std::size_t i = 0; i < n; ++i) {
-        out.x[i] += wh * k_state->vx[i];
-        out.y[i] += wh * k_state->vy[i];
-        out.z[i] += wh * k_state->vz[i];
-        out.vx[i] += wh * acc_.x[i];
-        out.vy[i] += wh * acc_.y[i];
-        out.vz[i] += wh * acc_.z[i];
-      }
+      const double ch = stage < 3 ? c_next[stage] * h : 0.0;
+      const NodeVectors& f = *force;
+      // One sweep: this stage's slope (velocity, and the acceleration neurons'
+      // outputs, ClothNetwork::accelerations) goes into the result and makes
+      // the next stage point in + c * h * slope. Node i reads the stage at i
+      // before writing it, so the stage may be the one read.
+      for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) {
+          const double vx = k_state->vx[i], vy = k_state->vy[i], vz = k_state->vz[i];
+          const double ax = free[i] * (w[i] * f.x[i] + g.x());
+          const double ay = free[i] * (w[i] * f.y[i] + g.y());
+          const double az = free[i] * (w[i] * f.z[i] + g.z());
+          out.x[i] += wh * vx;
+          out.y[i] += wh * vy;
+          out.z[i] += wh * vz;
+          out.vx[i] += wh * ax;
+          out.vy[i] += wh * ay;
+          out.vz[i] += wh * az;
+          if (stage == 3) continue;
+          stage_.x[i] = in.x[i] + ch * vx;
+          stage_.y[i] = in.y[i] + ch * vy;
+          stage_.z[i] = in.z[i] + ch * vz;
+          stage_.vx[i] = in.vx[i] + ch * ax;
+          stage_.vy[i] = in.vy[i] + ch * ay;
+          stage_.vz[i] = in.vz[i] + ch * az;
+        }
+      });
       if (stage == 3) break;
-      // Next stage point: in + c * h * (velocity, acceleration) of this stage.
-      const double ch = c_next[stage] * h;
-      for (std::size_t i = 0; i < n; ++i) {
-        const double vx = k_state->vx[i], vy = k_state->vy[i], vz = k_state->vz[i];
-        stage_.x[i] = in.x[i] + ch * vx;
-        stage_.y[i] = in.y[i] + ch * vy;
-        stage_.z[i] = in.z[i] + ch * vz;
-        stage_.vx[i] = in.vx[i] + ch * acc_.x[i];
-        stage_.vy[i] = in.vy[i] + ch * acc_.y[i];
-        stage_.vz[i] = in.vz[i] + ch * acc_.z[i];
-      }
       net.net_forces(stage_, inputs, force_);
-      net.accelerations(force_, acc_);
+      force = &force_;
       k_state = &stage_;
     }
     return {4, 0, true};
@@ -57,7 +66,7 @@ class RungeKutta4 final : public Integrator {
 
  private:
   ClothState stage_;
-  NodeVectors acc_, force_;
+  NodeVectors force_;
 };
 
 }  // namespace

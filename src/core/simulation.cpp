@@ -71,6 +71,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       integrator_(
           make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
                           settings.iterations)),
+      threads_(settings.threads),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
   if (initial.size() != net_.node_count())
@@ -137,6 +138,7 @@ void Simulation::set_state(const ClothState& s) {
 void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
   settings_ = settings;
+  if (threads_.size() != settings_.threads) threads_ = OwnedStepThreads(settings_.threads);
   integrator_ =
       make_integrator(settings_.integrator, net_, settings_.adaptive_settings.min_step_fraction,
                       settings_.iterations);
@@ -198,6 +200,12 @@ RunStatus Simulation::advance(double seconds) {
   const double allowance =
       static_cast<double>(settings_.step_budget) * (std::ceil(seconds / dt) + 1);
   budget_left_ = allowance < 1e18 ? static_cast<long>(allowance) : 1000000000000000000L;
+  // The team serves this call only (see threads_).
+  struct LendTeam {
+    ForceInputs& inputs;
+    ~LendTeam() { inputs.threads = nullptr; }
+  } lend{inputs_};
+  inputs_.threads = threads_.get();
   while (status_ == RunStatus::ok && time_ < t_end) {
     if (budget_left_ <= 0) {
       budget_exhausted_ = true;

@@ -195,6 +195,10 @@ class Simulation {
 
   // Caches and scratch, derived from the two above (invalidate()).
   Cloned<Integrator> integrator_;
+  // Who shares the sweeps (settings_.threads; a copy gets its own team).
+  // inputs_.threads points at it only inside advance(), so the inputs handed
+  // out never lend the team to another caller.
+  OwnedStepThreads threads_;
   // Where the nodes were when a fixed step taken in place began: what the
   // constraints read as the start (sized only when there are constraints).
   NodeVectors start_;

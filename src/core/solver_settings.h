@@ -11,6 +11,7 @@
 #include "integrator.h"
 #include "physical_limits.h"
 #include "step_controller.h"
+#include "step_threads.h"
 
 namespace neurocloth {
 
@@ -52,6 +53,10 @@ struct SolverSettings {
   // The projective integrator's local-global iterations per step: its accuracy
   // knob (more converge to the implicit Euler solution). Other integrators ignore it.
   int iterations = kDefaultProjectiveIterations;
+  // Threads that share each sweep of a step on a cloth of at least
+  // kMinThreadedNodes nodes (step_threads.h). The results are bit-identical
+  // to one thread's; only the wall time changes. 1: the calling thread alone.
+  int threads = 1;
 };
 
 // Throws std::invalid_argument naming the first field out of its range
@@ -84,6 +89,9 @@ inline void validate(const SolverSettings& s) {
   if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
   if (!limits::kIterations.contains(s.iterations))
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
+  if (s.threads < 1 || s.threads > kMaxStepThreads)
+    fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
+         static_cast<double>(s.threads));
 }
 
 }  // namespace neurocloth

@@ -6,6 +6,7 @@
 // the core.
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cstdint>
 
 #include "spring_layer.h"
@@ -24,30 +25,38 @@ struct Chunk {
 
 // Acceleration neurons: add each force neuron's output with weight +1 at n_i1
 // and -1 at n_i2, in passes where no two writes of one loop hit the same node.
+// Only nodes in [lo, hi) are written (one thread's part of the nodes,
+// step_threads.h): a node receives the same sums in the same order whatever
+// the clip, so a split step is bit-identical to a whole one.
 inline void accumulate_chunk(std::int32_t count, std::int32_t a, std::int32_t b, const double* fx,
-                             const double* fy, const double* fz, std::array<double*, 3> dst) {
+                             const double* fy, const double* fz, std::array<double*, 3> dst,
+                             std::int32_t lo = 0, std::int32_t hi = INT32_MAX) {
   const double* const src[3] = {fx, fy, fz};
   const std::int32_t o = b - a;
+  // Local indices [j0, j1) of the nodes base + j, clipped to [lo, hi) (node
+  // indices and lo are >= 0, so nothing overflows).
+  const auto first = [lo](std::int32_t j0, std::int32_t base) { return std::max(j0, lo - base); };
+  const auto last = [hi](std::int32_t j1, std::int32_t base) { return std::min(j1, hi - base); };
   for (int c = 0; c < 3; ++c) {
     const double* f = src[c];
     double* to = dst[c] + a;
     if (o > 0 && o < count) {
       // Overlapping ends (a row's neighbours, o = 1 or 2): node a+j receives
       // +f[j] and -f[j-o], so one pass over the nodes does both ends.
-      for (std::int32_t j = 0; j < o; ++j)
+      for (std::int32_t j = first(0, a), end = last(o, a); j < end; ++j)
         to[j] += f[j];
 #pragma GCC ivdep
-      for (std::int32_t j = o; j < count; ++j)
+      for (std::int32_t j = first(o, a), end = last(count, a); j < end; ++j)
         to[j] += f[j] - f[j - o];
-      for (std::int32_t j = count; j < count + o; ++j)
+      for (std::int32_t j = first(count, a), end = last(count + o, a); j < end; ++j)
         to[j] -= f[j - o];
     } else {
 #pragma GCC ivdep
-      for (std::int32_t k = 0; k < count; ++k)
+      for (std::int32_t k = first(0, a), end = last(count, a); k < end; ++k)
         to[k] += f[k];
       double* to_b = dst[c] + b;
 #pragma GCC ivdep
-      for (std::int32_t k = 0; k < count; ++k)
+      for (std::int32_t k = first(0, b), end = last(count, b); k < end; ++k)
         to_b[k] -= f[k];
     }
   }

@@ -8,8 +8,7 @@ namespace {
 
 class VelocityVerlet final : public Integrator {
  public:
-  explicit VelocityVerlet(const ClothNetwork& net)
-      : acc_(net.node_count()), force_(net.node_count()) {}
+  explicit VelocityVerlet(const ClothNetwork& net) : force_(net.node_count()) {}
   IntegratorKind kind() const override { return IntegratorKind::verlet; }
   std::unique_ptr<Integrator> clone() const override {
     return std::make_unique<VelocityVerlet>(*this);
@@ -17,30 +16,37 @@ class VelocityVerlet final : public Integrator {
   int order() const override { return 2; }
   double stability_limit() const override { return 2.0; }
 
+  // Each sweep uses the acceleration neurons' outputs (ClothNetwork::
+  // accelerations) where they are made.
   StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors& F, double h, ClothState& out) override {
+    const double* w = net.masses.inverse_mass.data();
+    const double* free = net.masses.free.data();
+    const Vec3 g = net.gravity;
     const std::size_t n = net.node_count();
-    net.accelerations(F, acc_);
-    for (std::size_t i = 0; i < n; ++i) {  // kick, drift
-      out.vx[i] = in.vx[i] + 0.5 * h * acc_.x[i];
-      out.vy[i] = in.vy[i] + 0.5 * h * acc_.y[i];
-      out.vz[i] = in.vz[i] + 0.5 * h * acc_.z[i];
-      out.x[i] = in.x[i] + h * out.vx[i];
-      out.y[i] = in.y[i] + h * out.vy[i];
-      out.z[i] = in.z[i] + h * out.vz[i];
-    }
+    for_node_parts(inputs.threads, n, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i) {  // kick, drift
+        out.vx[i] = in.vx[i] + 0.5 * h * (free[i] * (w[i] * F.x[i] + g.x()));
+        out.vy[i] = in.vy[i] + 0.5 * h * (free[i] * (w[i] * F.y[i] + g.y()));
+        out.vz[i] = in.vz[i] + 0.5 * h * (free[i] * (w[i] * F.z[i] + g.z()));
+        out.x[i] = in.x[i] + h * out.vx[i];
+        out.y[i] = in.y[i] + h * out.vy[i];
+        out.z[i] = in.z[i] + h * out.vz[i];
+      }
+    });
     net.net_forces(out, inputs, force_);
-    net.accelerations(force_, acc_);
-    for (std::size_t i = 0; i < n; ++i) {  // kick
-      out.vx[i] += 0.5 * h * acc_.x[i];
-      out.vy[i] += 0.5 * h * acc_.y[i];
-      out.vz[i] += 0.5 * h * acc_.z[i];
-    }
+    for_node_parts(inputs.threads, n, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i) {  // kick
+        out.vx[i] += 0.5 * h * (free[i] * (w[i] * force_.x[i] + g.x()));
+        out.vy[i] += 0.5 * h * (free[i] * (w[i] * force_.y[i] + g.y()));
+        out.vz[i] += 0.5 * h * (free[i] * (w[i] * force_.z[i] + g.z()));
+      }
+    });
     return {2, 0, true};
   }
 
  private:
-  NodeVectors acc_, force_;
+  NodeVectors force_;
 };
 
 }  // namespace
