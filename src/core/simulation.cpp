@@ -68,9 +68,9 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       states_{initial, initial},
       checkpoint_(initial),
       monitor_(net_, initial, settings.divergence),
-      integrator_(
-          make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
-                          settings.iterations)),
+      integrator_(make_integrator(settings.integrator, net_,
+                                  settings.adaptive_settings.min_step_fraction,
+                                  settings.iterations)),
       threads_(settings.threads),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
