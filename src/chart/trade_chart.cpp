@@ -14,6 +14,7 @@ Rgb method_colour(const std::string& method) {
   if (method == "verlet") return {0.17, 0.63, 0.17};          // green
   if (method == "rk4") return {0.84, 0.15, 0.16};             // red
   if (method == "implicit_euler") return {0.58, 0.40, 0.74};  // purple
+  if (method == "projective") return {0.09, 0.75, 0.81};      // cyan
   if (method == kAdaptiveMethod) return {0.55, 0.34, 0.29};   // brown
   return {0.5, 0.5, 0.5};
 }
