@@ -1,0 +1,47 @@
+// The large-step integrators on the hanging cloth refined to N x N (its width
+// and total mass kept by resized_grid): wall seconds per simulated second at
+// dt 1/64 s, with CG (implicit_euler) or local-global (projective) iterations
+// per step as counters. The figures of docs/network.md "Large steps".
+//   build/large_step_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "scene.h"
+
+namespace neurocloth {
+namespace {
+
+constexpr double kSeconds = 0.5;
+
+void BM_LargeStep(benchmark::State& state, IntegratorKind kind) {
+  Scene scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging.json"),
+                             static_cast<int>(state.range(0)));
+  scene.solver.integrator = kind;
+  scene.solver.adaptive = false;
+  scene.solver.dt = 1.0 / 64;
+  long steps = 0, iterations = 0;
+  for (auto _ : state) {
+    Simulation sim = scene.make_simulation();  // the factor is made inside, timed as a user waits
+    if (sim.advance(kSeconds) != RunStatus::ok) state.SkipWithError("the run did not finish ok");
+    steps += sim.steps();
+    iterations += sim.cg_iterations();
+  }
+  state.counters["s_per_simulated_s"] =
+      benchmark::Counter(kSeconds * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["iterations_per_step"] =
+      static_cast<double>(iterations) / static_cast<double>(steps);
+}
+
+void Sizes(benchmark::internal::Benchmark* b) {
+  b->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+}
+
+BENCHMARK_CAPTURE(BM_LargeStep, projective, IntegratorKind::projective)->Apply(Sizes);
+BENCHMARK_CAPTURE(BM_LargeStep, implicit_euler, IntegratorKind::implicit_euler)->Apply(Sizes);
+
+}  // namespace
+}  // namespace neurocloth
+
+BENCHMARK_MAIN();
