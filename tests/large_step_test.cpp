@@ -9,6 +9,7 @@
 #include "implicit_system.h"
 #include "integrator.h"
 #include "scene_builder.h"
+#include "simulation.h"
 #include "spring_laplacian.h"
 
 namespace neurocloth {
@@ -158,6 +159,29 @@ TEST(Projective, RefactorsWhenAWeightChanges) {
   fresh->step(m.net, ForceInputs{}, m.state, f, h, fresh_out);
   EXPECT_EQ(max_difference(out, fresh_out), 0.0);
   EXPECT_GT(max_difference(out, before), 1e-6);  // and the change mattered
+}
+
+// A cloth whose factor would not fit is refused by name, and a live change of
+// integrator to it leaves the simulation as it was.
+TEST(Projective, RefusesAClothBeyondItsFactorsLimit) {
+  ClothTopology big;
+  big.rest_positions.assign(513 * 513, Vec3(0, 0, 0));
+  for (std::size_t i = 0; i < big.rest_positions.size(); ++i)
+    big.rest_positions[i] = Vec3(static_cast<double>(i % 513), 0, static_cast<double>(i / 513));
+  Material material;
+  const ClothNetwork net = ClothNetwork::build(big, material);
+  try {
+    make_integrator(IntegratorKind::projective, net);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("263169 nodes"), std::string::npos) << e.what();
+  }
+  Simulation sim(net, net.rest_state(big.rest_positions), SolverSettings{});
+  SolverSettings projective = sim.settings();
+  projective.integrator = IntegratorKind::projective;
+  EXPECT_THROW(sim.set_solver_settings(projective), std::invalid_argument);
+  EXPECT_EQ(sim.settings().integrator, IntegratorKind::network);
+  EXPECT_EQ(sim.advance(1e-3), RunStatus::ok);  // still steps, with what it had
 }
 
 // The Laplacian solve against a dense solve of the same matrix.

@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "integrators.h"
 #include "spring_laplacian.h"
@@ -35,7 +37,7 @@ namespace {
 class Projective final : public Integrator {
  public:
   Projective(const ClothNetwork& net, int iterations)
-      : iterations_(std::max(1, iterations)),
+      : iterations_((refuse_beyond_limit(net), std::max(1, iterations))),
         n_(net.node_count()),
         y_(3 * n_),
         x_(3 * n_),
@@ -52,13 +54,16 @@ class Projective final : public Integrator {
     refactor_if_needed(net, h);
     inertial_target(net, inputs, in, h);
     x_ = y_;
+    // Without a factor (a matrix that is not positive definite: no weight can
+    // make one in range) the step is the inertial one, and says it did not converge.
+    const int iterations = factored_ ? iterations_ : 0;
     // Chebyshev needs the rate at which plain iterations converge. It depends
     // on the cloth and the step, not on the state much, so it is measured once,
     // on a step of plain iterations, and kept; an update that grows (the
     // estimate was too bold) restarts from a plain iteration and lowers it.
-    const bool measure = rho_ == 0;
+    const bool measure = rho_ == 0 && iterations > 0;
     double omega = 1, last_update = 0, first_half = 0;
-    for (int it = 0; it < iterations_; ++it) {
+    for (int it = 0; it < iterations; ++it) {
       local_global(net, in, h);  // rhs_ now holds the global step's answer
       double update = 0;
       for (std::size_t i = 0; i < rhs_.size(); ++i)
@@ -95,13 +100,24 @@ class Projective final : public Integrator {
       out.z[i] = in.z[i] + h * out.vz[i];
     }
     StepReport report{1, 0, true};
-    report.cg_iterations = iterations_;  // local-global iterations, for the same tallies
+    report.cg_iterations = iterations;  // local-global iterations, for the same tallies
     report.cg_converged = factored_;
     return report;
   }
 
  private:
   static constexpr double kMaxRho = 0.999;
+  // The factor's fill grows faster than the nodes (1.15 M entries at 128 x 128,
+  // about 25 M at 512 x 512, a few seconds to make): beyond this a cloth is
+  // refused rather than left to exhaust memory.
+  static constexpr std::size_t kMaxNodes = 512 * 512;
+  static void refuse_beyond_limit(const ClothNetwork& net) {
+    if (net.node_count() > kMaxNodes)
+      throw std::invalid_argument("projective: a cloth of " + std::to_string(net.node_count()) +
+                                  " nodes is beyond its prefactored solve's limit of " +
+                                  std::to_string(kMaxNodes) +
+                                  " (512 x 512); choose another integrator");
+  }
   static constexpr double kRhoBackoff = 0.99;
 
   // The global matrix's weights in the h^2-scaled form: M, and h^2 (k + k') + h d per spring.

@@ -137,11 +137,12 @@ void Simulation::set_state(const ClothState& s) {
 
 void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
+  // Made before anything changes too: an integrator may refuse this cloth.
+  std::unique_ptr<Integrator> integrator = make_integrator(
+      settings.integrator, net_, settings.adaptive_settings.min_step_fraction, settings.iterations);
   settings_ = settings;
   if (threads_.size() != settings_.threads) threads_ = OwnedStepThreads(settings_.threads);
-  integrator_ =
-      make_integrator(settings_.integrator, net_, settings_.adaptive_settings.min_step_fraction,
-                      settings_.iterations);
+  integrator_ = std::move(integrator);
   start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());
   invalidate(Stale::weights);
 }
