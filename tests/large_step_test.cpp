@@ -151,7 +151,8 @@ TEST(Projective, RefactorsWhenAWeightChanges) {
   for (double& k : m.net.springs.stiffness)  // a material slider moves
     k *= 3;
   m.net.net_forces(m.state, f);
-  used->step(m.net, ForceInputs{}, m.state, f, h, out);
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // once: solved near the old factor
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // kept: refactored
   // An integrator that never saw the old weights steps to the same bits; a
   // stale factor (or a stale convergence rate) would not.
   const auto fresh =
@@ -159,6 +160,44 @@ TEST(Projective, RefactorsWhenAWeightChanges) {
   fresh->step(m.net, ForceInputs{}, m.state, f, h, fresh_out);
   EXPECT_EQ(max_difference(out, fresh_out), 0.0);
   EXPECT_GT(max_difference(out, before), 1e-6);  // and the change mattered
+}
+
+// A one-off step (another h: the end of a frame, an adaptive trial) is solved
+// by CG preconditioned with the factor it has, to the same fixed point.
+TEST(Projective, AOneOffStepSolvesItsOwnMatrix) {
+  const Moving m = moving_cloth(8);
+  const double h = 1.0 / 60, other = 0.37 / 60;
+  NodeVectors f(m.net.node_count());
+  m.net.net_forces(m.state, f);
+  const auto used =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
+  ClothState out = m.state, direct = m.state;
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // factored for h
+  const StepReport r = used->step(m.net, ForceInputs{}, m.state, f, other, out);
+  EXPECT_TRUE(r.cg_converged);
+  const auto fresh =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
+  fresh->step(m.net, ForceInputs{}, m.state, f, other, direct);  // factored for `other`
+  const ClothState reference = backward_euler(m.net, m.state, other);
+  const double moved = max_difference(reference, m.state);
+  EXPECT_LT(max_difference(out, reference), 1e-7 * moved);
+  EXPECT_LT(max_difference(direct, reference), 1e-7 * moved);
+}
+
+// Its factor is made for one step: the adaptive rule, which would ask for a new
+// one at every trial, is refused by name.
+TEST(Projective, TakesFixedStepsOnly) {
+  SolverSettings s;
+  s.integrator = IntegratorKind::projective;
+  s.adaptive = true;
+  try {
+    validate(s);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("solver.adaptive"), std::string::npos) << e.what();
+  }
+  s.adaptive = false;
+  EXPECT_NO_THROW(validate(s));
 }
 
 // A cloth whose factor would not fit is refused by name, and a live change of

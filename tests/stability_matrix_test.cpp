@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "stability.h"
 #include "stability_probe.h"
@@ -76,8 +77,16 @@ TEST_P(StabilityMatrix, EveryRunEndsOkOrDivergedWithItsLastGoodState) {
   RecordProperty("diverged", diverged);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllIntegrators, StabilityMatrix,
-                         testing::Combine(testing::ValuesIn(kAllIntegrators), testing::Bool()),
+// Every integrator fixed and adaptive, but projective, which takes fixed steps only.
+std::vector<Config> configs() {
+  std::vector<Config> out;
+  for (bool adaptive : {false, true})
+    for (IntegratorKind kind : kAllIntegrators)
+      if (!(adaptive && kind == IntegratorKind::projective)) out.emplace_back(kind, adaptive);
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, StabilityMatrix, testing::ValuesIn(configs()),
                          [](const testing::TestParamInfo<Config>& info) {
                            return std::string(to_string(std::get<0>(info.param))) +
                                   (std::get<1>(info.param) ? "_adaptive" : "_fixed");

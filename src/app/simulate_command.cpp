@@ -104,6 +104,8 @@ int run_simulate(const SimulateOptions& o) {
                        "unknown integrator '" + *o.integrator +
                            "' (expected one of: " + integrator_names() + ")");
     scene.solver.integrator = *kind;
+    // It takes fixed steps: asked for by name on an adaptive scene, it gets them.
+    if (*kind == IntegratorKind::projective) scene.solver.adaptive = false;
   }
   if (o.dt) {
     if (!(*o.dt > 0) || !std::isfinite(*o.dt))

@@ -101,12 +101,14 @@ class Projective final : public Integrator {
     }
     StepReport report{1, 0, true};
     report.cg_iterations = iterations;  // local-global iterations, for the same tallies
-    report.cg_converged = factored_;
+    report.cg_converged = factored_ && near_converged_;
     return report;
   }
 
  private:
   static constexpr double kMaxRho = 0.999;
+  static constexpr double kNearTolerance = 1e-13;
+  static constexpr int kNearIterations = 200;
   // The factor's fill grows faster than the nodes (1.15 M entries at 128 x 128,
   // about 25 M at 512 x 512, a few seconds to make): beyond this a cloth is
   // refused rather than left to exhaust memory.
@@ -120,7 +122,12 @@ class Projective final : public Integrator {
   }
   static constexpr double kRhoBackoff = 0.99;
 
-  // The global matrix's weights in the h^2-scaled form: M, and h^2 (k + k') + h d per spring.
+  // The global matrix's weights in the h^2-scaled form: M, and h^2 (k + k') + h d per
+  // spring. A factor costs what hundreds of solves cost (340 ms at 128 x 128), so it
+  // is made for the matrix a run keeps: one asked for twice in a row. A one-off
+  // step (the end of a frame, a trial of the adaptive step, a slider being
+  // dragged) solves its own matrix by conjugate gradient with the factor it has
+  // as preconditioner, exactly, in a few iterations.
   void refactor_if_needed(const ClothNetwork& net, double h) {
     const SpringLayer& L = net.springs;
     node_weight_.resize(n_);
@@ -129,7 +136,15 @@ class Projective final : public Integrator {
     spring_weight_.resize(L.size());
     for (std::size_t s = 0; s < L.size(); ++s)
       spring_weight_[s] = h * h * (L.stiffness[s] + extra_stiffness(net, s)) + h * L.damping[s];
+    near_ = false;
+    near_converged_ = true;
     if (laplacian_.same_as(node_weight_, spring_weight_, net.masses.free)) return;
+    const bool asked_before = spring_weight_ == last_asked_;
+    last_asked_ = spring_weight_;
+    if (factored_ && !asked_before && laplacian_.same_nodes(node_weight_, net.masses.free)) {
+      near_ = true;
+      return;
+    }
     rho_ = 0;  // another matrix converges at another rate
     factored_ = laplacian_.factor(L, node_weight_, spring_weight_, net.masses.free);
   }
@@ -197,7 +212,13 @@ class Projective final : public Integrator {
         if (fb) rhs_[3 * b + i] += c[i] + (fa ? 0.0 : w * y_[3 * a + i]);
       }
     }
-    if (factored_) laplacian_.solve3(rhs_.data());
+    if (!factored_) return;
+    if (near_)
+      near_converged_ = laplacian_.solve3_near(L, spring_weight_, rhs_.data(), kNearTolerance,
+                                               kNearIterations) >= 0 &&
+                        near_converged_;
+    else
+      laplacian_.solve3(rhs_.data());
   }
 
   int iterations_;
@@ -207,7 +228,10 @@ class Projective final : public Integrator {
   std::vector<double> node_weight_, spring_weight_;
   SpringLaplacian laplacian_;
   bool factored_ = false;
-  double rho_ = 0;  // plain iterations' convergence rate; 0 until measured
+  double rho_ = 0;                  // plain iterations' convergence rate; 0 until measured
+  bool near_ = false;               // this step's matrix is not the factored one
+  bool near_converged_ = true;      // and its solves converged
+  std::vector<double> last_asked_;  // the spring weights the last step asked for
 };
 
 }  // namespace

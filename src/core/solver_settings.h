@@ -87,6 +87,10 @@ inline void validate(const SolverSettings& s) {
   if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
   if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);
   if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
+  // Its factor is made for one step; the adaptive rule would ask for a new one
+  // at every trial (docs/network.md, "Large steps").
+  if (s.integrator == IntegratorKind::projective && s.adaptive)
+    fail("adaptive", "false for the projective integrator, which takes fixed steps", 1);
   if (!limits::kIterations.contains(s.iterations))
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
   if (s.threads < 1 || s.threads > kMaxStepThreads)

@@ -42,7 +42,8 @@ bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>
       return false;
   const auto& p = llt.permutationP().indices();
   perm_.assign(p.data(), p.data() + n);
-  work_.assign(3 * n, 0.0);
+  for (auto* v : {&work_, &r_, &z_, &p_, &q_})
+    v->assign(3 * n, 0.0);
   node_weight_ = node_weight;
   spring_weight_ = spring_weight;
   free_ = free;
@@ -90,6 +91,66 @@ void SpringLaplacian::solve3(double* xyz) const {
   for (std::int32_t i = 0; i < n_; ++i)
     for (int c = 0; c < 3; ++c)
       xyz[3 * i + c] = y[3 * perm_[i] + c];
+}
+
+void SpringLaplacian::multiply3(const SpringLayer& layer, const std::vector<double>& spring_weight,
+                                const double* x, double* y) const {
+  for (std::int32_t i = 0; i < n_; ++i) {
+    const double d = free_[i] != 0.0 ? node_weight_[i] : 1.0;
+    for (int c = 0; c < 3; ++c)
+      y[3 * i + c] = d * x[3 * i + c];
+  }
+  for (std::size_t s = 0; s < layer.size(); ++s) {
+    const std::int32_t a = layer.node_a[s], b = layer.node_b[s];
+    const bool fa = free_[a] != 0.0, fb = free_[b] != 0.0;
+    const double w = spring_weight[s];
+    for (int c = 0; c < 3; ++c) {
+      if (fa) y[3 * a + c] += w * (x[3 * a + c] - (fb ? x[3 * b + c] : 0.0));
+      if (fb) y[3 * b + c] += w * (x[3 * b + c] - (fa ? x[3 * a + c] : 0.0));
+    }
+  }
+}
+
+int SpringLaplacian::solve3_near(const SpringLayer& layer, const std::vector<double>& spring_weight,
+                                 double* xyz, double tolerance, int max_iterations) const {
+  const std::size_t m = 3 * static_cast<std::size_t>(n_);
+  auto dot = [m](const std::vector<double>& u, const std::vector<double>& v) {
+    double sum = 0;
+    for (std::size_t i = 0; i < m; ++i)
+      sum += u[i] * v[i];
+    return sum;
+  };
+  r_.assign(xyz, xyz + m);  // b
+  const double b_norm = std::sqrt(dot(r_, r_));
+  z_ = r_;
+  solve3(z_.data());  // the first guess: the factored matrix's answer
+  std::copy(z_.begin(), z_.end(), xyz);
+  if (b_norm == 0.0) return 0;
+  multiply3(layer, spring_weight, xyz, q_.data());
+  for (std::size_t i = 0; i < m; ++i)
+    r_[i] -= q_[i];
+  z_ = r_;
+  solve3(z_.data());
+  p_ = z_;
+  double rz = dot(r_, z_);
+  for (int it = 0; it < max_iterations; ++it) {
+    if (std::sqrt(dot(r_, r_)) <= tolerance * b_norm) return it;
+    multiply3(layer, spring_weight, p_.data(), q_.data());
+    const double pq = dot(p_, q_);
+    if (!(pq > 0.0)) return -1;
+    const double step = rz / pq;
+    for (std::size_t i = 0; i < m; ++i) {
+      xyz[i] += step * p_[i];
+      r_[i] -= step * q_[i];
+    }
+    z_ = r_;
+    solve3(z_.data());
+    const double rz_new = dot(r_, z_);
+    for (std::size_t i = 0; i < m; ++i)
+      p_[i] = z_[i] + rz_new / rz * p_[i];
+    rz = rz_new;
+  }
+  return std::sqrt(dot(r_, r_)) <= tolerance * b_norm ? max_iterations : -1;
 }
 
 }  // namespace neurocloth

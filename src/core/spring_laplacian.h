@@ -38,6 +38,17 @@ class SpringLaplacian {
     return n_ > 0 && node_weight == node_weight_ && spring_weight == spring_weight_ &&
            free == free_;
   }
+  // True when the factor was made for these masses and pins (its springs' weights may differ).
+  bool same_nodes(const std::vector<double>& node_weight, const std::vector<double>& free) const {
+    return n_ > 0 && node_weight == node_weight_ && free == free_;
+  }
+  // Solves P' x = b for the matrix P' of (node_weight_, spring_weight) — another step
+  // or other weights on the same nodes — by conjugate gradient with this factor
+  // as the preconditioner: exact to `tolerance` (relative residual) in a few
+  // iterations when P' is close to the factored P. `xyz` holds b on entry, x on
+  // return. Returns the iterations taken, or -1 when it did not converge.
+  int solve3_near(const SpringLayer& layer, const std::vector<double>& spring_weight, double* xyz,
+                  double tolerance, int max_iterations) const;
   // Entries of the factor (a cost figure: each solve reads them once).
   std::size_t factor_entries() const { return row_.size(); }
 
@@ -48,7 +59,10 @@ class SpringLaplacian {
   std::vector<std::int32_t> col_start_, row_;
   std::vector<double> value_;
   std::vector<std::int32_t> perm_;  // node i is row perm_[i] of the factor
-  mutable std::vector<double> work_;
+  mutable std::vector<double> work_, r_, z_, p_, q_;
+  // y = P' x for the matrix with these spring weights (on this factor's nodes).
+  void multiply3(const SpringLayer& layer, const std::vector<double>& spring_weight,
+                 const double* x, double* y) const;
   std::vector<double> node_weight_, spring_weight_, free_;
 };
 
