@@ -146,6 +146,53 @@ TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
     EXPECT_LT((by_hand[i] - F.at(i)).norm(), 1e-12 * scale) << i;
 }
 
+// Every spring's output against the textbook formula (a true square root and
+// a division), on a cloth whose chunks end in part-filled vectors (rows of 7
+// and 6 springs), linear and stiffening, with one spring of zero length. The step's
+// 1/len (reciprocal_sqrt.h, or the hand-vectorised estimate plus Newton
+// steps) must be round-off: one Newton step fewer fails by 1e-9.
+TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
+  for (const SpringFunctionKind kind :
+       {SpringFunctionKind::linear, SpringFunctionKind::stiffening}) {
+    Scene scene = test::asset_scene("free_cloth");
+    ClothNetwork net = scene.build_network();
+    net.springs.function = {kind, 0.05, 10.0};
+    ClothState s = scene.initial_state();
+    unsigned seed = 11;
+    auto rnd = [&seed] {
+      seed = seed * 1103515245u + 12345u;
+      return ((seed >> 8) % 2001) / 1000.0 - 1.0;
+    };
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      s.set_position(i, s.position(i) + 0.01 * Vec3(rnd(), rnd(), rnd()));
+      s.set_velocity(i, Vec3(rnd(), rnd(), rnd()));
+    }
+    const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
+    s.set_position(b0, s.position(a0));  // spring 3 has no direction: no force
+    SpringActivations act;
+    net.spring_outputs(s, act);
+    for (std::size_t k = 0; k < net.spring_count(); ++k) {
+      const int a = net.springs.node_a[k], b = net.springs.node_b[k];
+      const Vec3 d = s.position(b) - s.position(a);
+      const double len = std::sqrt(d.squaredNorm());
+      const Vec3 got(act.fx[k], act.fy[k], act.fz[k]);
+      if (len <= kMinSpringLength) {
+        EXPECT_EQ(got, Vec3::Zero()) << k;
+        continue;
+      }
+      const double rest = net.springs.rest_length[k];
+      const double b1 = net.springs.stiffness[k], b2 = net.springs.damping[k];
+      const Vec3 dv = s.velocity(b) - s.velocity(a);
+      const double magnitude =
+          b1 * net.springs.function.force(len - rest, rest) + b2 * dv.dot(d) / len;
+      const Vec3 want = magnitude / len * d;
+      // Round-off of len - rest and of the projections, a few ulp of each term's size.
+      const double scale = b1 * net.springs.function.max_slope() * len + b2 * dv.norm();
+      EXPECT_LT((got - want).norm(), 1e-14 * scale) << "spring " << k << ", " << to_string(kind);
+    }
+  }
+}
+
 TEST(ClothNetwork, WeightsArePerSpringAndPerNodeAndWritable) {
   Scene scene = test::asset_scene("hanging");
   ClothNetwork net = scene.build_network();

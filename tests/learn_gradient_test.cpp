@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "fit_problem.h"
@@ -62,7 +63,10 @@ void expect_exact_gradient(FitProblem& problem, const std::vector<Eigen::Index>&
     // Relative to the component itself, with a floor of 1e-4 of the largest
     // component (a component near zero has no relative accuracy to speak of).
     const double denom = std::max(std::abs(fd), 1e-4 * scale);
-    EXPECT_LE(std::abs(g[i] - fd) / denom, tolerance)
+    // Differences cannot resolve less than the loss's own rounding over 2 eps:
+    // two ulps of E in the difference of two losses.
+    const double resolution = 4 * std::numeric_limits<double>::epsilon() * std::abs(E) / (2 * eps);
+    EXPECT_LE(std::abs(g[i] - fd), tolerance * denom + resolution)
         << "component " << i << ": adjoint " << g[i] << ", differences " << fd;
   }
 }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "reciprocal_sqrt.h"
+#include "spring_chunk_avx512.h"
 #include "spring_chunks.h"
 
 namespace neurocloth {
@@ -89,6 +90,12 @@ using namespace spring_chunks;
 template <SpringFunctionKind K, bool Direct>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
+#if defined(__AVX512F__)
+  if constexpr (kHandVectorised) {
+    propagate_chunk_avx512<K, Direct>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
+    return;
+  }
+#endif
   const double* xa = s.x.data() + a;
   const double* ya = s.y.data() + a;
   const double* za = s.z.data() + a;
@@ -163,6 +170,19 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     }
     const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
     if (!touches) return;
+#if defined(__AVX512F__)
+    // A row's neighbours inside this part: summed in registers (same bits).
+    const std::int32_t o = b - a;
+    if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
+      if (o == 1)
+        propagate_row_avx512<K, 1>(net.springs, first, count, a, s, kMinSpringLength,
+                                   F.x.data() + a, F.y.data() + a, F.z.data() + a);
+      else
+        propagate_row_avx512<K, 2>(net.springs, first, count, a, s, kMinSpringLength,
+                                   F.x.data() + a, F.y.data() + a, F.z.data() + a);
+      return;
+    }
+#endif
     propagate_chunk<K, false>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
     accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
   });

@@ -1,5 +1,7 @@
 #include "spring_layer.h"
 
+#include "spring_chunks.h"
+
 namespace neurocloth {
 
 const char* to_string(SpringFunctionKind k) {
@@ -19,6 +21,7 @@ void SpringLayer::rebuild_runs() {
     }
     runs.push_back({s, 1, node_a[s], node_b[s]});
   }
+  chunks = spring_chunks::cut(runs);
 }
 
 }  // namespace neurocloth

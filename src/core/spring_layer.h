@@ -25,12 +25,24 @@ struct SpringRun {
   std::int32_t node_b;
 };
 
+// A run's piece evaluated in one go (spring_chunks.h): the same fields as a run,
+// plus whether its two node ranges are disjoint, so its outputs can go straight
+// into the acceleration neurons.
+struct SpringChunk {
+  std::int32_t first;
+  std::int32_t count;
+  std::int32_t node_a;
+  std::int32_t node_b;
+  bool direct;
+};
+
 struct SpringLayer {
   // Topology (fixed for a run).
   std::vector<std::int32_t> node_a;  // n_i1
   std::vector<std::int32_t> node_b;  // n_i2
   std::vector<SpringFamily> family;
   std::vector<SpringRun> runs;
+  std::vector<SpringChunk> chunks;  // every run cut up, in the order they are evaluated
   // Learnable parameters (weights), one per spring.
   std::vector<double> rest_length;
   std::vector<double> stiffness;  // b1, N/m
@@ -39,7 +51,7 @@ struct SpringLayer {
   SpringFunction function;
 
   std::size_t size() const { return node_a.size(); }
-  // Rebuilds `runs` from node_a/node_b; call after changing the topology.
+  // Rebuilds `runs` and `chunks` from node_a/node_b; call after changing the topology.
   void rebuild_runs();
 };
 
