@@ -42,11 +42,41 @@ TEST(AccuracyControl, ARequestBecomesThePickedSettingAsOneCommand) {
     EXPECT_EQ(p.command.dt, c.settings.dt) << e;
     EXPECT_EQ(p.command.adaptive, c.settings.adaptive) << e;
     EXPECT_EQ(p.command.safety, c.settings.adaptive_settings.safety) << e;
+    EXPECT_EQ(p.command.iterations, c.settings.iterations) << e;
     EXPECT_NE(p.description.find(describe_setting(c.row)), std::string::npos) << p.description;
   }
   // Tighter costs more: the 0.1% pick takes a smaller step than the 10% one.
   EXPECT_LT(pick_for_accuracy(t, 0.001, scene.solver).command.dt,
             pick_for_accuracy(t, 0.1, scene.solver).command.dt);
+}
+
+// A projective pick sends its iterations per step with the rest; a projective
+// row from a file without the column leaves the scene's own.
+TEST(AccuracyControl, AProjectivePickSendsItsIterations) {
+  SolverSettings scene_solver;
+  scene_solver.iterations = 7;
+  AccuracyTrade t;
+  t.path = "projective.csv";
+  t.table = TradeTable{};
+  t.table->scene = "hand";
+  t.table->reference.change = 1e-6;
+  TradeRow row;
+  row.method = "projective";
+  row.parameter = "dt";
+  row.value = row.dt = 1.0 / 64;
+  row.iterations = 4;
+  row.position_error_max = 0.02;
+  row.wall_per_simulated_second = 0.1;
+  t.table->rows = {row};
+  const AccuracyPick p = pick_for_accuracy(t, 0.05, scene_solver);
+  EXPECT_EQ(p.command.integrator, IntegratorKind::projective);
+  EXPECT_EQ(p.command.dt, 1.0 / 64);
+  EXPECT_FALSE(p.command.adaptive);
+  EXPECT_EQ(p.command.iterations, 4);
+  EXPECT_NE(p.description.find("projective 4 it., dt 0.01562 s"), std::string::npos)
+      << p.description;
+  t.table->rows[0].iterations = 0;
+  EXPECT_EQ(pick_for_accuracy(t, 0.05, scene_solver).command.iterations, 7);
 }
 
 TEST(AccuracyControl, BeyondWhatTheTradeVouchesForIsRefusedNamingTheFile) {

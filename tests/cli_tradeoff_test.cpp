@@ -64,10 +64,16 @@ TEST_F(Cli, TradeoffWritesTheTableTheChartAndTheSummary) {
   EXPECT_EQ(t.seconds, 0.05);
   EXPECT_EQ(t.samples, 2);
   EXPECT_GT(t.reference.runs, 1);
-  for (const char* m : {"network", "explicit_euler", "verlet", "rk4", "implicit_euler", "adaptive"})
+  for (const char* m :
+       {"network", "explicit_euler", "verlet", "rk4", "implicit_euler", "projective", "adaptive"})
     EXPECT_TRUE(std::any_of(t.rows.begin(), t.rows.end(), [&](const TradeRow& row) {
       return row.method == m;
     })) << m;
+  // Projective at every iterations count of the default grid, at each step tried.
+  std::vector<int> iterations;
+  for (const TradeRow& row : t.rows)
+    if (row.method == "projective") iterations.push_back(row.iterations);
+  EXPECT_EQ(iterations, (std::vector<int>{1, 2, 4, 10, 30, 1, 2, 4, 10, 30}));
 
   const std::string png = read_text(report + ".png");
   ASSERT_GT(png.size(), 8u);
@@ -108,6 +114,24 @@ TEST_F(Cli, AccuracyPicksTheCheapestSettingFromAGivenTrade) {
   EXPECT_EQ(doc.at("dt").get<double>(), 0.004);
   EXPECT_EQ(doc.at("accuracy").at("parameter"), "safety");
   EXPECT_EQ(doc.at("accuracy").at("value").get<double>(), 0.5);
+}
+
+// Projective's row carries its iterations per step into the run and RESULT.json.
+TEST_F(Cli, AccuracyPicksAProjectiveRowWithItsIterations) {
+  TradeTable t = read_trade_csv(write("base.csv", hand_made_trade()));
+  TradeRow projective = row("projective", 0.015625, 0.005, 0.03);
+  projective.iterations = 4;
+  t.rows.push_back(projective);
+  const std::string trade = write("trade.csv", trade_csv(t));
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.03125", "--accuracy",
+                         "0.05", "--trade", trade, "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("picked projective 4 it., dt 0.01562 s"), std::string::npos) << r.out;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("integrator"), "projective");
+  EXPECT_EQ(doc.at("dt").get<double>(), 0.015625);
+  EXPECT_EQ(doc.at("steps").get<long>(), 2);
+  EXPECT_EQ(doc.at("accuracy").at("iterations").get<int>(), 4);
 }
 
 TEST_F(Cli, AccuracyUsesTheCommittedTradeOfAShippedScene) {
@@ -153,6 +177,9 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--methods", "network,leapfrog"});
   expect_input_error(args, {"--methods", "leapfrog"});
+  args = quick_tradeoff(scene_asset("hanging"), report);
+  args.insert(args.end(), {"--projective-iterations", "4,0"});
+  expect_input_error(args, {"--projective-iterations", "must be in [1, 1000]"});
   // A folder that does not exist: refused before measuring, naming the file.
   expect_input_error(quick_tradeoff(scene_asset("hanging"), dir_.string() + "/nowhere/report"),
                      {"--out", "nowhere/report.csv"}, 10);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "asset_paths.h"
 #include "hand_made_trade.h"
 #include "input_error.h"
 #include "tradeoff/trade_csv.h"
@@ -37,7 +38,33 @@ TradeTable csv_table() {
   t.rows[1].steps = 2048;
   t.rows[1].force_evaluations = 4096;
   t.rows[7].rejected_steps = 12;
+  // Projective's second knob, swept at each step.
+  TradeRow projective = test::row("projective", 0.7, 0.03);
+  projective.dt = projective.value = 0.015625;
+  projective.iterations = 4;
+  t.rows.push_back(projective);
   return t;
+}
+
+// `text` as files written before projective's iterations were swept: without the
+// iterations column.
+std::string without_iterations_column(const std::string& text) {
+  std::string out;
+  bool rows = false;
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t eol = text.find('\n', pos);
+    std::string line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (line.rfind("method,", 0) == 0) rows = true;
+    if (rows) {  // the fifth field goes, with the comma before it
+      std::size_t comma = 0;
+      for (int k = 0; k < 4; ++k)
+        comma = line.find(',', comma + 1);
+      line.erase(comma, line.find(',', comma + 1) - comma);
+    }
+    out += line + "\n";
+  }
+  return out;
 }
 
 TEST(TradeoffCsv, RoundTrips) {
@@ -63,6 +90,7 @@ TEST(TradeoffCsv, RoundTrips) {
     EXPECT_EQ(b.parameter, a.parameter);
     EXPECT_EQ(b.value, a.value);
     EXPECT_EQ(b.dt, a.dt);
+    EXPECT_EQ(b.iterations, a.iterations);
     EXPECT_EQ(b.steps, a.steps);
     EXPECT_EQ(b.status, a.status);
     EXPECT_EQ(b.force_evaluations, a.force_evaluations);
@@ -125,17 +153,26 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
       {"a safety above 1", "adaptive,", "0.25", "1.5", "value", "1.5", "(0, 1]"},
       {"a negative step", "network,", "0.001,0.001", "0.001,-0.001", "dt", "-0.001", "must be > 0"},
       {"a fraction of a step count", "network,", ",0,", ",1.5,", "steps", "1.5", "whole number"},
-      {"no error on a finished run", "rk4,dt,0.001,0.001,0,0.05", "0.05", "nan",
+      {"no error on a finished run", "rk4,dt,0.001,0.001,,0,0.05", "0.05", "nan",
        "position_error_max", "nan", "not a finite number"},
       {"more samples than an int holds", "# samples", "8", "4294967304", "# samples", "4294967304",
        "must be at most 1000"},
       {"a step below the floor", "network,", "0.001,0.001", "0.001,1e-12", "dt", "1e-12",
        "microsecond"},
-      {"an unknown status", "rk4,dt,0.001,0.001,0,0.05", ",ok", ",fine", "status", "fine",
+      {"an unknown status", "rk4,dt,0.001,0.001,,0,0.05", ",ok", ",fine", "status", "fine",
        "must be ok, diverged or stopped"},
-      {"a missing field", "network,", ",0,ok", ",ok", "status", "", "expected 12 fields, found 11"},
+      {"a missing field", "network,", ",0,ok", ",ok", "status", "", "expected 13 fields, found 12"},
       {"a misspelt column", "method,", "position_error_rms", "position_error_rsm", "header",
-       "position_error_rsm", "column 7 must be 'position_error_rms'"},
+       "position_error_rsm", "column 8 must be 'position_error_rms'"},
+      {"iterations that are not a count", "projective,", ",4,", ",4.5,", "iterations", "4.5",
+       "not a whole number >= 0: '4.5'"},
+      {"no iterations", "projective,", ",4,", ",0,", "iterations", "0,", "must be in [1, 1000]"},
+      {"too many iterations", "projective,", ",4,", ",1001,", "iterations", "1001",
+       "must be in [1, 1000]"},
+      {"iterations for a method that does not iterate", "verlet,", "0.0009765625,,",
+       "0.0009765625,3,", "iterations", "3,", "must be empty for verlet"},
+      {"a misspelt optional column", "method,", "iterations", "iterashuns", "header", "iterashuns",
+       "column 5 must be 'iterations' or 'steps', got 'iterashuns'"},
       {"a bad metadata value", "# seconds", "2", "two", "# seconds", "two", "not a finite number"},
       {"reference_met neither yes nor no", "# reference_met", "yes", "maybe", "# reference_met",
        "maybe", "yes or no"},
@@ -184,20 +221,26 @@ TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
     }
 
   // Empty is "not measured" only where a run did not finish.
-  const int finished = line_of(text, "rk4,dt,0.001,0.001,0,0.05");
+  const int finished = line_of(text, "rk4,dt,0.001,0.001,,0,0.05");
   const auto e = csv_error(edit_line(text, finished, "0.05,", ","));
   ASSERT_TRUE(e);
   EXPECT_EQ(e->line(), finished);
   EXPECT_EQ(e->field(), "position_error_max");
   EXPECT_NE(e->message().find("not a finite number: ''"), std::string::npos) << e->what();
 
-  std::string legacy = text;
+  // As files written before 2026-12 say it: "nan", and no iterations column.
+  std::string legacy = without_iterations_column(text);
   for (std::size_t at; (at = legacy.find(",,")) != std::string::npos;)
     legacy.replace(at, 2, ",nan,");
   for (std::size_t at; (at = legacy.find(": none\n")) != std::string::npos;)
     legacy.replace(at, 7, ": nan\n");
   ASSERT_NE(legacy, text);
-  EXPECT_EQ(trade_csv(parse_trade_csv(legacy, "old.csv")), text);
+  const TradeTable legacy_back = parse_trade_csv(legacy, "old.csv");
+  for (std::size_t i = 0; i < t.rows.size(); ++i)
+    if (!t.rows[i].ok()) {
+      EXPECT_TRUE(std::isnan(legacy_back.rows[i].position_error_max)) << i;
+    }
+  EXPECT_EQ(without_iterations_column(trade_csv(legacy_back)), without_iterations_column(text));
 }
 
 // A measurement has one scene, one duration...: a second value for a key
@@ -262,6 +305,58 @@ TEST(TradeoffCsv, AcceptsWindowsLineEndsAndPeoplesComments) {
   const TradeTable t = parse_trade_csv(crlf, "x.csv");
   EXPECT_EQ(t.rows.size(), csv_table().rows.size());
   EXPECT_EQ(t.rows.back().status, "ok");
+}
+
+TEST(TradeoffCsv, ProjectiveRowsKeepTheirIterations) {
+  const std::string text = trade_csv(csv_table());
+  EXPECT_NE(text.find("\nmethod,parameter,value,dt,iterations,steps,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nprojective,dt,0.015625,0.015625,4,0,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nverlet,dt,0.0009765625,0.0009765625,,2048,"), std::string::npos) << text;
+  const TradeTable back = parse_trade_csv(text, "x.csv");
+  EXPECT_EQ(back.rows.back().iterations, 4);
+  EXPECT_EQ(settings_for(back.rows.back(), SolverSettings{}).iterations, 4);
+  EXPECT_EQ(describe_setting(back.rows.back()), "projective 4 it., dt 0.01562 s");
+}
+
+// Files written before the column (the committed trades among them) still read:
+// every row's iterations is 0, and a projective row runs at the scene's own.
+TEST(TradeoffCsv, AFileWithoutTheIterationsColumnReads) {
+  const std::string old = without_iterations_column(trade_csv(csv_table()));
+  ASSERT_NE(old.find("\nmethod,parameter,value,dt,steps,"), std::string::npos) << old;
+  const TradeTable back = parse_trade_csv(old, "old.csv");
+  ASSERT_EQ(back.rows.size(), csv_table().rows.size());
+  for (const TradeRow& r : back.rows)
+    EXPECT_EQ(r.iterations, 0) << describe_setting(r);
+  EXPECT_EQ(back.rows[1].steps, 2048) << "the columns after it are where they were";
+  SolverSettings scene;
+  scene.iterations = 12;
+  const SolverSettings s = settings_for(back.rows.back(), scene);
+  EXPECT_EQ(s.integrator, IntegratorKind::projective);
+  EXPECT_EQ(s.iterations, 12);
+  // Written again, the column is there and the projective row's field is empty
+  // (the scene's own): that reads too.
+  const std::string again = trade_csv(back);
+  EXPECT_NE(again.find("\nprojective,dt,0.015625,0.015625,,0,"), std::string::npos) << again;
+  EXPECT_EQ(trade_csv(parse_trade_csv(again, "again.csv")), again);
+  // A missing field is named after the file's own columns.
+  const int line = line_of(old, "network,");
+  std::string shorter = old;
+  const std::size_t row_at = shorter.find("\nnetwork,") + 1;
+  shorter.erase(shorter.find(",ok\n", row_at), 3);
+  const auto e = csv_error(shorter);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), line);
+  EXPECT_EQ(e->field(), "status");
+  EXPECT_NE(e->message().find("expected 12 fields, found 11"), std::string::npos) << e->what();
+}
+
+TEST(TradeoffCsv, TheCommittedTradesRead) {
+  for (const char* scene : {"hanging", "table_drape", "flag"}) {
+    SCOPED_TRACE(scene);
+    const TradeTable t = read_trade_csv(assets_directory() + "/tradeoff/" + scene + ".csv");
+    EXPECT_EQ(t.scene, scene);
+    EXPECT_FALSE(t.rows.empty());
+  }
 }
 
 }  // namespace

@@ -78,6 +78,10 @@ int main(int argc, char** argv) {
   tradeoff
       ->add_option("--methods", trade.methods, "Only these (" + integrator_names() + ", adaptive)")
       ->delimiter(',');
+  tradeoff
+      ->add_option("--projective-iterations", trade.projective_iterations,
+                   "Projective's iterations per step, each run at every step (default 1,2,4,10,30)")
+      ->delimiter(',');
 
   RelaxOptions rel;
   auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");

@@ -55,10 +55,11 @@ struct TradeoffOptions {
   double seconds = 2;
   std::string out;  // REPORT: the three files' common path without extension
   int samples = 8;
-  double reference_budget = 20;      // wall seconds for the RK4 reference's halvings
-  double method_budget = 8;          // wall seconds per method's sweep
-  int levels = 7;                    // settings per method at most
-  std::vector<std::string> methods;  // empty: all
+  double reference_budget = 20;            // wall seconds for the RK4 reference's halvings
+  double method_budget = 8;                // wall seconds per method's sweep
+  int levels = 7;                          // settings per method at most
+  std::vector<std::string> methods;        // empty: all
+  std::vector<int> projective_iterations;  // empty: the sweep's own grid
 };
 int run_tradeoff(const TradeoffOptions& options);
 // The parts `simulate --accuracy` shares when it has to measure a trade itself:

@@ -23,6 +23,7 @@ struct AccuracyPick {
   std::string trade;  // the CSV it came from, or "measured now"
   double trade_seconds = 0;
   TradeRow row;
+  int iterations = 0;  // projective: the iterations per step it runs at (the row's or the scene's)
 };
 
 // The trade to pick from: --trade, else the committed one, else measured now.
@@ -63,6 +64,7 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
       choose_for_accuracy(trade, pick.trade, pick.requested, scene.solver, "--accuracy");
   scene.solver = c.settings;
   pick.row = c.row;
+  if (c.settings.integrator == IntegratorKind::projective) pick.iterations = c.settings.iterations;
   pick.trade_seconds = trade.seconds;
   std::printf(
       "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s wall "
@@ -76,16 +78,18 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
 }
 
 nlohmann::json accuracy_json(const AccuracyPick& p) {
-  return {{"requested", p.requested},
-          {"trade", p.trade},
-          {"trade_seconds", p.trade_seconds},
-          {"method", p.row.method},
-          {"parameter", p.row.parameter},
-          {"value", p.row.value},
-          {"dt", p.row.dt},
-          {"measured_position_error_max", p.row.position_error_max},
-          {"measured_position_error_rms", p.row.position_error_rms},
-          {"measured_wall_per_simulated_second", p.row.wall_per_simulated_second}};
+  nlohmann::json j = {{"requested", p.requested},
+                      {"trade", p.trade},
+                      {"trade_seconds", p.trade_seconds},
+                      {"method", p.row.method},
+                      {"parameter", p.row.parameter},
+                      {"value", p.row.value},
+                      {"dt", p.row.dt},
+                      {"measured_position_error_max", p.row.position_error_max},
+                      {"measured_position_error_rms", p.row.position_error_rms},
+                      {"measured_wall_per_simulated_second", p.row.wall_per_simulated_second}};
+  if (p.iterations > 0) j["iterations"] = p.iterations;
+  return j;
 }
 
 }  // namespace

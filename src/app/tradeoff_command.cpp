@@ -13,6 +13,7 @@
 
 #include "commands.h"
 #include "input_error.h"
+#include "physical_limits.h"
 #include "scene.h"
 #include "text_file.h"
 #include "trade_chart.h"
@@ -57,7 +58,11 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
       throw InputError("command line", "--methods",
                        "unknown method '" + m + "' (expected one of: " + integrator_names() + ", " +
                            kAdaptiveMethod + ")");
+  for (int i : o.projective_iterations)
+    if (!limits::kIterations.contains(i))
+      throw InputError("command line", "--projective-iterations", limits::kIterations.refusal(i));
   TradeoffPlan plan;
+  if (!o.projective_iterations.empty()) plan.projective_iterations = o.projective_iterations;
   plan.seconds = o.seconds;
   plan.samples = o.samples;
   plan.reference.budget_seconds = o.reference_budget;

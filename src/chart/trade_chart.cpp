@@ -1,6 +1,7 @@
 #include "trade_chart.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "tradeoff/accuracy_choice.h"
@@ -19,6 +20,16 @@ Rgb method_colour(const std::string& method) {
   return {0.5, 0.5, 0.5};
 }
 
+Rgb line_colour(const TradeRow& row) {
+  const Rgb c = method_colour(row.method);
+  if (row.iterations == 0) return c;
+  // Projective's lines in its cyan, darker the fewer iterations: 1 at 40%, 30
+  // and more at full strength, log-spaced between.
+  const double shade =
+      0.4 + 0.6 * std::min(1.0, std::log(static_cast<double>(row.iterations)) / std::log(30.0));
+  return {c.r * shade, c.g * shade, c.b * shade};
+}
+
 ChartSpec trade_chart_spec(const TradeTable& t) {
   ChartSpec spec;
   char title[200];
@@ -29,24 +40,26 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
   spec.y_label = "max position error / cloth size";
   spec.ring_legend = "Pareto front";
   const std::vector<std::size_t> front = pareto_front(t.rows);
-  // One series per method, in the order the methods first appear.
+  // One series per line (a method, or projective at one iterations count), in
+  // the order the lines first appear.
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     const TradeRow& r = t.rows[i];
     if (!r.ok()) continue;
+    const std::string name = line_name(r);
     auto s = std::find_if(spec.series.begin(), spec.series.end(),
-                          [&](const ChartSeries& c) { return c.name == r.method; });
+                          [&](const ChartSeries& c) { return c.name == name; });
     if (s == spec.series.end()) {
-      spec.series.push_back({r.method, method_colour(r.method), {}});
+      spec.series.push_back({name, line_colour(r), {}});
       s = spec.series.end() - 1;
     }
     const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
     s->points.push_back({r.wall_per_simulated_second, r.position_error_max, on_front});
   }
-  // A method none of whose settings finished still gets its legend entry, saying so.
+  // A line none of whose settings finished still gets its legend entry, saying so.
   for (const TradeRow& r : t.rows)
     if (std::none_of(spec.series.begin(), spec.series.end(),
-                     [&](const ChartSeries& c) { return c.name == r.method; }))
-      spec.series.push_back({r.method, method_colour(r.method), {}});
+                     [&](const ChartSeries& c) { return c.name == line_name(r); }))
+      spec.series.push_back({line_name(r), line_colour(r), {}});
   for (ChartSeries& s : spec.series) {
     if (s.points.empty()) s.name += " (none finished)";
   }

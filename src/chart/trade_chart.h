@@ -1,6 +1,6 @@
 #pragma once
 // The trade's chart: max position error against wall seconds per simulated
-// second, log-log, one line per method (in cost order), the Pareto front
+// second, log-log, one line per method (projective: one per iterations count), the Pareto front
 // ringed and joined, the reference's resolution as a dashed rule when it did
 // not reach its target.
 #include <iosfwd>
@@ -13,6 +13,8 @@ namespace neurocloth {
 
 // Each method's colour, the same in every chart (black is the Pareto front's).
 Rgb method_colour(const std::string& method);
+// A row's line: its method's colour (projective's shaded by its iterations).
+Rgb line_colour(const TradeRow& row);
 
 ChartSpec trade_chart_spec(const TradeTable& trade);
 

@@ -224,6 +224,7 @@ std::string LiveScene::on(const SetSolver& c) {
   s.dt = c.dt;
   s.adaptive = c.adaptive;
   s.adaptive_settings.safety = c.safety;
+  s.iterations = c.iterations;
   try {
     validate(s);
   } catch (const std::exception& e) {

@@ -36,9 +36,10 @@ struct SetAdaptive {
 // unstable). The run's own guards (step budget, substeps) are kept.
 struct SetSolver {
   IntegratorKind integrator;
-  double dt;      // s: the fixed step, or the refresh interval when adaptive
-  bool adaptive;  // the paper's propagation (network integrator)
-  double safety;  // adaptive: t_c <= safety * stable step bound
+  double dt;       // s: the fixed step, or the refresh interval when adaptive
+  bool adaptive;   // the paper's propagation (network integrator)
+  double safety;   // adaptive: t_c <= safety * stable step bound
+  int iterations;  // projective: local-global iterations per step (ignored by the others)
 };
 // Pulls node `node` with `force` (N) towards `anchor` (drawn as a line) until released.
 struct ApplyForce {

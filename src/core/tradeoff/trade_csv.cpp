@@ -1,5 +1,6 @@
 #include "trade_csv.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +21,12 @@ namespace neurocloth {
 namespace {
 
 constexpr std::size_t kColumns = std::size(kTradeColumns);
+
+// Projective's iterations, or an empty field for the methods that do not
+// iterate (and for a projective row read from a file without the column).
+std::string iterations_field(int iterations) {
+  return iterations > 0 ? std::to_string(iterations) : "";
+}
 
 // "Not measured" (a run that did not finish, a reference never compared) is an
 // empty field: a file of ours never holds NaN or Inf where a number belongs.
@@ -136,10 +143,10 @@ std::string trade_csv(const TradeTable& t) {
   s << "\n";
   for (const TradeRow& row : t.rows)
     s << row.method << ',' << row.parameter << ',' << number(row.value, 17) << ','
-      << number(row.dt, 17) << ',' << row.steps << ',' << number(row.position_error_max, 6) << ','
-      << number(row.position_error_rms, 6) << ',' << number(row.energy_error, 6) << ','
-      << number(row.wall_per_simulated_second, 6) << ',' << row.force_evaluations << ','
-      << row.rejected_steps << ',' << row.status << "\n";
+      << number(row.dt, 17) << ',' << iterations_field(row.iterations) << ',' << row.steps << ','
+      << number(row.position_error_max, 6) << ',' << number(row.position_error_rms, 6) << ','
+      << number(row.energy_error, 6) << ',' << number(row.wall_per_simulated_second, 6) << ','
+      << row.force_evaluations << ',' << row.rejected_steps << ',' << row.status << "\n";
   return s.str();
 }
 
@@ -149,7 +156,10 @@ namespace {
 // naming the line (and column) it stopped at.
 class TradeCsvParser {
  public:
-  explicit TradeCsvParser(const std::string& path) : in_(path) { table_.reference.change = -1; }
+  explicit TradeCsvParser(const std::string& path) : in_(path) {
+    table_.reference.change = -1;
+    std::fill(std::begin(index_), std::end(index_), kAbsent);
+  }
 
   void line(const std::string& text) {
     ++line_;
@@ -250,16 +260,30 @@ class TradeCsvParser {
     }
   }
 
+  // The columns must come in kTradeColumns' order; only the optional one may be missing.
   void header(const std::vector<Field>& f, const std::string& text) {
-    for (std::size_t c = 0; c < kColumns; ++c)
-      if (c >= f.size() || f[c].text != kTradeColumns[c])
-        in_.fail("header",
-                 "column " + std::to_string(c + 1) + " must be '" + kTradeColumns[c] + "', got '" +
-                     (c < f.size() ? f[c].text : std::string()) + "'",
-                 line_, c < f.size() ? f[c].column : static_cast<int>(text.size()) + 1);
-    if (f.size() != kColumns)
-      in_.fail("header", "more than " + std::to_string(kColumns) + " columns", line_,
-               f[kColumns].column);
+    std::size_t at = 0;
+    std::string skipped;  // the optional column, when it was not where it could be
+    for (std::size_t c = 0; c < kColumns; ++c) {
+      const std::string name = kTradeColumns[c];
+      if (at < f.size() && f[at].text == name) {
+        index_[c] = at++;
+        skipped.clear();
+        continue;
+      }
+      if (name == kOptionalTradeColumn) {
+        skipped = name;
+        continue;
+      }
+      in_.fail("header",
+               "column " + std::to_string(at + 1) + " must be " +
+                   (skipped.empty() ? "" : "'" + skipped + "' or ") + "'" + name + "', got '" +
+                   (at < f.size() ? f[at].text : std::string()) + "'",
+               line_, at < f.size() ? f[at].column : static_cast<int>(text.size()) + 1);
+    }
+    if (f.size() != at)
+      in_.fail("header", "more than " + std::to_string(at) + " columns", line_, f[at].column);
+    columns_ = at;
     const char* missing = !have_.scene     ? "# scene"
                           : !have_.seconds ? "# seconds"
                           : !have_.samples ? "# samples"
@@ -270,12 +294,23 @@ class TradeCsvParser {
     have_header_ = true;
   }
 
-  TradeRow row(const std::vector<Field>& f, const std::string& text) const {
-    if (f.size() != kColumns)
+  // The header's name for field `i` of a row.
+  const char* column_name(std::size_t i) const {
+    for (std::size_t c = 0; c < kColumns; ++c)
+      if (index_[c] == i) return kTradeColumns[c];
+    return "row";
+  }
+
+  TradeRow row(const std::vector<Field>& all, const std::string& text) const {
+    if (all.size() != columns_)
       in_.fail(
-          f.size() < kColumns ? kTradeColumns[f.size()] : "row",
-          "expected " + std::to_string(kColumns) + " fields, found " + std::to_string(f.size()),
-          line_, f.size() < kColumns ? static_cast<int>(text.size()) + 1 : f[kColumns].column);
+          column_name(std::min(all.size(), columns_)),
+          "expected " + std::to_string(columns_) + " fields, found " + std::to_string(all.size()),
+          line_, all.size() < columns_ ? static_cast<int>(text.size()) + 1 : all[columns_].column);
+    // The fields in kTradeColumns' order; an absent column reads as an empty field.
+    std::vector<Field> f(kColumns, Field{"", 0});
+    for (std::size_t c = 0; c < kColumns; ++c)
+      if (index_[c] != kAbsent) f[c] = all[index_[c]];
     TradeRow r;
     r.method = f[0].text;
     const bool adaptive = r.method == kAdaptiveMethod;
@@ -300,24 +335,43 @@ class TradeCsvParser {
       in_.fail("dt", limits::kTimeStep.refusal(r.dt), line_, f[3].column);
     if (!adaptive && r.value != r.dt)
       in_.fail("value", "must equal dt for a fixed step, got " + f[2].text, line_, f[2].column);
-    r.steps = in_.count(f[4], "steps", line_);
-    r.status = f[11].text;
+    r.iterations = iterations(f[4], r.method);
+    r.steps = in_.count(f[5], "steps", line_);
+    r.status = f[12].text;
     if (r.status != "ok" && r.status != "diverged" && r.status != "stopped")
       in_.fail("status", "must be ok, diverged or stopped, got '" + r.status + "'", line_,
-               f[11].column);
+               f[12].column);
     // A run that did not finish has no error to measure (an empty field).
     const bool nan_ok = !r.ok();
-    r.position_error_max = in_.real(f[5], "position_error_max", line_, 0, false, nan_ok);
-    r.position_error_rms = in_.real(f[6], "position_error_rms", line_, 0, false, nan_ok);
-    r.energy_error = in_.real(f[7], "energy_error", line_, 0, false, nan_ok);
+    r.position_error_max = in_.real(f[6], "position_error_max", line_, 0, false, nan_ok);
+    r.position_error_rms = in_.real(f[7], "position_error_rms", line_, 0, false, nan_ok);
+    r.energy_error = in_.real(f[8], "energy_error", line_, 0, false, nan_ok);
     r.wall_per_simulated_second =
-        in_.real(f[8], "wall_per_simulated_second", line_, 0, false, nan_ok);
-    r.force_evaluations = in_.count(f[9], "force_evaluations", line_);
-    r.rejected_steps = in_.count(f[10], "rejected_steps", line_);
+        in_.real(f[9], "wall_per_simulated_second", line_, 0, false, nan_ok);
+    r.force_evaluations = in_.count(f[10], "force_evaluations", line_);
+    r.rejected_steps = in_.count(f[11], "rejected_steps", line_);
     return r;
   }
 
+  // Projective's iterations per step: a count a scene could ask for, or empty (a
+  // file without the column, or one re-written from it: the scene's own). The
+  // other methods do not iterate: empty.
+  int iterations(const Field& f, const std::string& method) const {
+    if (f.text.empty()) return 0;
+    if (method != to_string(IntegratorKind::projective))
+      in_.fail("iterations",
+               "must be empty for " + method + " (only projective iterates), got " + f.text, line_,
+               f.column);
+    const long n = in_.count(f, "iterations", line_);
+    if (!limits::kIterations.contains(static_cast<double>(n)))
+      in_.fail("iterations", limits::kIterations.refusal(static_cast<double>(n)), line_, f.column);
+    return static_cast<int>(n);
+  }
+
+  static constexpr std::size_t kAbsent = static_cast<std::size_t>(-1);
   Reader in_;
+  std::size_t index_[kColumns];      // where each of kTradeColumns is in a row, or kAbsent
+  std::size_t columns_ = 0;          // how many the header has
   std::map<std::string, int> seen_;  // metadata key -> its line
   TradeTable table_;
   int line_ = 0;

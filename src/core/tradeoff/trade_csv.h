@@ -9,11 +9,13 @@
 
 namespace neurocloth {
 
-// The columns, in order.
+// The columns, in order. `iterations` may be absent (files written before
+// projective's iterations were swept): its rows then read as iterations 0.
 inline constexpr const char* kTradeColumns[] = {"method",
                                                 "parameter",
                                                 "value",
                                                 "dt",
+                                                "iterations",
                                                 "steps",
                                                 "position_error_max",
                                                 "position_error_rms",
@@ -22,6 +24,8 @@ inline constexpr const char* kTradeColumns[] = {"method",
                                                 "force_evaluations",
                                                 "rejected_steps",
                                                 "status"};
+
+inline constexpr const char* kOptionalTradeColumn = "iterations";
 
 // The "# key: value" lines that describe the measurement, each at most once
 // (sweep_stopped_by, one per stopped sweep, may repeat).

@@ -17,7 +17,21 @@ SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
   if (!kind) throw std::invalid_argument("unknown method '" + row.method + "'");
   base.integrator = *kind;
   base.adaptive = false;
+  if (row.iterations != 0) {
+    if (*kind != IntegratorKind::projective)
+      throw std::invalid_argument(row.method + " takes no iterations (only projective iterates)");
+    base.iterations = row.iterations;
+  }
   return base;
+}
+
+std::string line_name(const std::string& method, int iterations) {
+  if (iterations == 0) return method;
+  return method + " " + std::to_string(iterations) + " it.";
+}
+
+std::string line_name(const TradeRow& row) {
+  return line_name(row.method, row.iterations);
 }
 
 std::string describe_setting(const TradeRow& row) {
@@ -26,7 +40,7 @@ std::string describe_setting(const TradeRow& row) {
     std::snprintf(s, sizeof s, "%s, safety %.4g (t_delta %.4g s)", row.method.c_str(), row.value,
                   row.dt);
   else
-    std::snprintf(s, sizeof s, "%s, dt %.4g s", row.method.c_str(), row.dt);
+    std::snprintf(s, sizeof s, "%s, dt %.4g s", line_name(row).c_str(), row.dt);
   return s;
 }
 

@@ -20,6 +20,11 @@ struct TradeRow {
   std::string parameter;  // what the sweep varies: "dt" (fixed step) or "safety" (adaptive)
   double value = 0;       // its value
   double dt = 0;          // the fixed step, or the adaptive refresh interval t_delta, s
+  // The projective integrator's local-global iterations per step: its accuracy
+  // knob besides dt, swept at each step. 0 for every other method, and for a
+  // projective row of a file without the column (it then runs at the scene's own
+  // solver.iterations, as it was measured).
+  int iterations = 0;
   long steps = 0;
   // Relative to the cloth's size (positions) and to the energy scale (run_error.h);
   // NaN when the run did not finish (nothing to compare).
@@ -48,10 +53,16 @@ struct TradeTable {
   std::vector<TradeRow> rows;
 };
 
-// The solver settings a row stands for, on top of the scene's own (`base`):
-// throws std::invalid_argument for a method that is neither an integrator nor adaptive.
+// The solver settings a row stands for, on top of the scene's own (`base`): the
+// one place a row becomes settings (`simulate --accuracy`, the viewer's slider).
+// Throws std::invalid_argument for a method that is neither an integrator nor
+// adaptive, or iterations on a method that does not iterate.
 SolverSettings settings_for(const TradeRow& row, SolverSettings base);
-// "rk4, dt 0.000488 s" or "adaptive, safety 0.25 (t_delta 0.04 s)".
+// The line a row belongs to on the chart: its method, or "projective 4 it.".
+std::string line_name(const std::string& method, int iterations);
+std::string line_name(const TradeRow& row);
+// "rk4, dt 0.000488 s", "projective 4 it., dt 0.0156 s" or
+// "adaptive, safety 0.25 (t_delta 0.04 s)".
 std::string describe_setting(const TradeRow& row);
 
 }  // namespace neurocloth

@@ -48,11 +48,10 @@ bool wanted(const TradeoffPlan& plan, const std::string& method) {
          std::find(plan.methods.begin(), plan.methods.end(), method) != plan.methods.end();
 }
 
-// Why a method's sweep stops after `row`, made by `run` (empty: go on). A run
-// that did not finish says little about what the next one costs: only the time
-// already spent counts against the budget then.
-std::string stop_reason(const TradeoffPlan& plan, const ReferenceReport& ref, const TradeRow& row,
-                        int levels, double line_wall, const SampledRun& run) {
+// Why a line stops after `row`, its `levels`-th setting, on its accuracy alone
+// (empty: go on).
+std::string accuracy_stop(const TradeoffPlan& plan, const ReferenceReport& ref, const TradeRow& row,
+                          int levels) {
   if (row.ok() && row.position_error_max <= plan.error_floor) return "error floor";
   // At least a few settings even then, so that the chart shows the line's slope
   // (and where it flattens on the reference's own error).
@@ -60,9 +59,14 @@ std::string stop_reason(const TradeoffPlan& plan, const ReferenceReport& ref, co
       levels >= plan.min_levels)
     return "reference resolution";
   if (levels >= plan.max_levels) return "levels";
-  const double next = row.ok() ? 2 * run.wall_seconds : 0;
-  if (line_wall + next > plan.method_budget_seconds) return "budget";
   return "";
+}
+
+// The wall time the next halving of a run is predicted to take: twice this one's.
+// A run that did not finish says little about what the next one costs: only the
+// time already spent counts against the budget then.
+double next_wall(const TradeRow& row, const SampledRun& run) {
+  return row.ok() ? 2 * run.wall_seconds : 0;
 }
 
 }  // namespace
@@ -94,21 +98,35 @@ struct Sweep {
     if (log) log(s);
   }
 
-  // Runs one setting and adds its row; false when the method's sweep stops here.
-  bool measure(const SolverSettings& s, const std::string& method, const char* parameter,
-               double value, int level, double& line_wall) {
-    const SampledRun run = run_sampled_timed(scene, s, times);
-    line_wall += run.wall_seconds;
+  // Runs one setting and adds its row.
+  TradeRow run_row(const SolverSettings& s, const std::string& method, const char* parameter,
+                   double value, SampledRun& run) {
+    run = run_sampled_timed(scene, s, times);
     TradeRow row = row_from(run, ref.run, scale, times.size());
     row.method = method;
     row.parameter = parameter;
     row.value = value;
+    if (s.integrator == IntegratorKind::projective) row.iterations = s.iterations;
     say(describe_row(row));
     table.rows.push_back(row);
-    const std::string why = stop_reason(plan, ref.report, row, level, line_wall, run);
+    return row;
+  }
+
+  void stopped(const std::string& line, const std::string& why) {
+    say("  " + line + " stops: " + why);
+    table.sweep_stops.push_back(line + ": " + why);
+  }
+
+  // Runs one setting of a line and adds its row; false when the line stops here.
+  bool measure(const SolverSettings& s, const std::string& method, const char* parameter,
+               double value, int level, double& line_wall) {
+    SampledRun run;
+    const TradeRow row = run_row(s, method, parameter, value, run);
+    line_wall += run.wall_seconds;
+    std::string why = accuracy_stop(plan, ref.report, row, level);
+    if (why.empty() && line_wall + next_wall(row, run) > plan.method_budget_seconds) why = "budget";
     if (why.empty()) return true;
-    say("  " + method + " stops: " + why);
-    table.sweep_stops.push_back(method + ": " + why);
+    stopped(line_name(row), why);
     return false;
   }
 
@@ -131,11 +149,54 @@ struct Sweep {
     s.dt = first_step(scene, kind, plan.seconds / plan.samples);
     double line_wall = 0;
     for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_wall); ++level) {
-      if (s.dt / 2 < limits::kTimeStep.low) {  // no run may ask for a step below the floor
-        say("  " + std::string(to_string(kind)) + " stops: the step floor (1e-6 s)");
-        table.sweep_stops.push_back(std::string(to_string(kind)) + ": step floor");
-        break;
+      if (at_step_floor(s.dt, to_string(kind))) break;
+      s.dt /= 2;
+    }
+  }
+
+  // No run may ask for a step below the floor: true (and the line stopped) when
+  // halving `dt` would.
+  bool at_step_floor(double dt, const std::string& line) {
+    if (dt / 2 >= limits::kTimeStep.low) return false;
+    say("  " + line + " stops: the step floor (1e-6 s)");
+    table.sweep_stops.push_back(line + ": step floor");
+    return true;
+  }
+
+  // Projective has two knobs: at each step it tries (halved as for the others),
+  // every iterations count of the plan's grid whose line is still going. The
+  // lines stop on their accuracy one by one, and on the method's one budget
+  // together: the next step's runs, predicted at twice this step's, must fit.
+  void projective() {
+    SolverSettings s = scene.solver;
+    s.integrator = IntegratorKind::projective;
+    s.adaptive = false;
+    s.dt = first_step(scene, s.integrator, plan.seconds / plan.samples);
+    std::vector<int> going = plan.projective_iterations;
+    double method_wall = 0;
+    for (int level = 1; !going.empty(); ++level) {
+      double next = 0;
+      std::vector<int> still;
+      for (int iterations : going) {
+        s.iterations = iterations;
+        SampledRun run;
+        const TradeRow row = run_row(s, to_string(s.integrator), "dt", s.dt, run);
+        method_wall += run.wall_seconds;
+        const std::string why = accuracy_stop(plan, ref.report, row, level);
+        if (!why.empty()) {
+          stopped(line_name(row), why);
+          continue;
+        }
+        next += next_wall(row, run);
+        still.push_back(iterations);
       }
+      going = std::move(still);
+      if (!going.empty() && method_wall + next > plan.method_budget_seconds) {
+        for (int iterations : going)
+          stopped(line_name(to_string(s.integrator), iterations), "budget");
+        return;
+      }
+      if (!going.empty() && at_step_floor(s.dt, to_string(s.integrator))) return;
       s.dt /= 2;
     }
   }
@@ -170,6 +231,14 @@ TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
   if (!(plan.seconds > 0) || !std::isfinite(plan.seconds))
     throw std::invalid_argument("seconds must be a finite number > 0");
   if (plan.samples < 1) throw std::invalid_argument("samples must be >= 1");
+  if (wanted(plan, to_string(IntegratorKind::projective))) {
+    if (plan.projective_iterations.empty())
+      throw std::invalid_argument("projective needs at least one iterations count to sweep");
+    for (int i : plan.projective_iterations)
+      if (!limits::kIterations.contains(i))
+        throw std::invalid_argument("projective iterations must be in [1, 1000], got " +
+                                    std::to_string(i));
+  }
   for (const std::string& m : plan.methods)
     if (m != kAdaptiveMethod && !parse_integrator(m))
       throw std::invalid_argument("unknown method '" + m + "' (expected one of: " +
@@ -195,6 +264,8 @@ TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
     if (!wanted(plan, to_string(kind))) continue;
     if (kind == IntegratorKind::rk4)
       sweep.rk4();
+    else if (kind == IntegratorKind::projective)
+      sweep.projective();
     else
       sweep.fixed_step(kind);
   }

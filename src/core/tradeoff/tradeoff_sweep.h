@@ -26,13 +26,17 @@ struct TradeoffPlan {
   int min_levels = 3;
   double error_floor = 1e-4;
   double method_budget_seconds = 8;
+  // Projective's second knob: its sweep runs each of these iterations counts at
+  // every step it tries (docs/tradeoff.md says why these). Each in [1, 1000].
+  std::vector<int> projective_iterations = {1, 2, 4, 10, 30};
   // The methods to sweep (integrator names and/or "adaptive"); empty: all six.
   // RK4's line always comes from the reference's own runs.
   std::vector<std::string> methods;
 };
 
 // Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
-// an unknown method), std::runtime_error when even the reference diverges.
+// an unknown method, projective with no iterations count or one out of range), std::runtime_error
+// when even the reference diverges.
 TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
                             const TradeoffPlan& plan,
                             const std::function<void(const std::string&)>& log = {});
