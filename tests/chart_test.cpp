@@ -208,5 +208,29 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   EXPECT_TRUE(pic.near(x, y, method_colour("rk4"), 0, 1));
 }
 
+// Projective's iterations counts are lines of their own, named and shaded by the count.
+TEST(TradeChart, ProjectiveHasALinePerIterationsCount) {
+  TradeTable t;
+  t.scene = "hand";
+  t.seconds = 2;
+  t.reference.change = 1e-9;
+  t.reference.met = true;
+  t.rows = {row("projective", 0.1, 0.3), row("projective", 0.3, 0.2), row("projective", 0.2, 0.25),
+            row("projective", 0.6, 0.1)};
+  const int iterations[] = {1, 4, 1, 4};
+  for (std::size_t i = 0; i < t.rows.size(); ++i)
+    t.rows[i].iterations = iterations[i];
+  const ChartSpec spec = trade_chart_spec(t);
+  ASSERT_EQ(spec.series.size(), 2u);
+  EXPECT_EQ(spec.series[0].name, "projective 1 it.");
+  EXPECT_EQ(spec.series[1].name, "projective 4 it.");
+  ASSERT_EQ(spec.series[0].points.size(), 2u);
+  EXPECT_EQ(spec.series[0].points[1].x, 0.2);
+  const Rgb one = spec.series[0].colour, four = spec.series[1].colour;
+  EXPECT_LT(one.g, four.g) << "fewer iterations, darker";
+  const Rgb cyan = method_colour("projective");
+  EXPECT_LE(four.g, cyan.g);
+}
+
 }  // namespace
 }  // namespace neurocloth
