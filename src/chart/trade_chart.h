@@ -1,8 +1,8 @@
 #pragma once
 // The trade's chart: max position error against wall seconds per simulated
-// second, log-log, one line per method (projective: one per iterations count), the Pareto front
-// ringed and joined, the reference's resolution as a dashed rule when it did
-// not reach its target.
+// second, log-log, one line per method (projective: one per iterations count),
+// the Pareto front ringed and joined, the reference's resolution as a dashed
+// rule when it did not reach its target.
 #include <iosfwd>
 #include <string>
 
