@@ -1,7 +1,8 @@
 // Fuzzes the trade CSV reader, parse_trade_csv(). An accepted trade must hold
 // finite measurements (NaN only where the format says so: the errors of a run
 // that did not finish, and an unmeasured reference change, read as -1), and
-// settings whose step can be run: 1/dt finite, and the counts it was written
+// settings whose step can be run: 1/dt finite, projective's iterations in
+// [1, 1000] (none for the other methods), and the counts it was written
 // (not truncated to an int), each "# key" written once.
 #include <algorithm>
 #include <cerrno>
@@ -47,6 +48,11 @@ void check_trade(const Contract& c, const TradeTable& t) {
                                                " (1/dt overflows: the setting cannot be run)");
     c.require(row.steps >= 0 && row.force_evaluations >= 0 && row.rejected_steps >= 0,
               f + "a negative count accepted");
+    // Only projective iterates, and a picked row runs at its count: one a scene could ask for.
+    c.require(
+        row.iterations == 0 ||
+            (row.method == "projective" && row.iterations >= 1 && row.iterations <= 1000),
+        f + "iterations accepted as " + std::to_string(row.iterations) + " for " + row.method);
     for (double v : {row.position_error_max, row.position_error_rms, row.energy_error,
                      row.wall_per_simulated_second})
       c.require(std::isfinite(v) || (std::isnan(v) && !row.ok()),
