@@ -39,9 +39,9 @@ int run(const ViewerOptions& options) {
   if (options.camera) camera = parse_camera(*options.camera);
   // A resized cloth may be too fine for the scene's solver to keep real time:
   // then the window (and --sim-only, its speed reference) runs one that can.
-  // Not for a script or lockstep: their runs must not depend on this machine.
+  // Not in lockstep: a deterministic run must not depend on this machine.
   RealtimePick pick;
-  if (options.size && !options.script && !options.lockstep) {
+  if (options.size && !options.lockstep) {
     std::fprintf(stderr, "neurocloth: timing the scene's solver at %d x %d nodes...\n",
                  *options.size, *options.size);
     pick = pick_for_real_time(scene, [](const Scene& s) { return measure_cost(s, 0.4); });
