@@ -235,6 +235,7 @@ void ImplicitMultigrid::invert_blocks(std::vector<double>& blocks) {
 bool ImplicitMultigrid::build(const ClothNetwork& net, const ImplicitSystem& system, double alpha,
                               double beta, double gamma) {
   levels_.clear();
+  coarsest_.clear();
   if (net.node_count() > kMaxNodes) return false;
   SparseMatrix A = assemble(net, system, alpha, beta, gamma);
   cycle_cost_ = 0;
@@ -283,12 +284,13 @@ bool ImplicitMultigrid::build(const ClothNetwork& net, const ImplicitSystem& sys
     A = std::move(coarse_A);
     levels_.push_back(std::move(L));
   }
-  const bool definite = !levels_.empty() && A.rows() <= kCoarsestRows && factor_dense(A, coarsest_);
+  const bool definite = A.rows() <= kCoarsestRows && factor_dense(A, coarsest_);
   const double rows = static_cast<double>(A.rows());
   build_cost_ = kBuildOverhead * build_cost_ + rows * rows * rows / 3.0;
   cycle_cost_ += 2.0 * rows * rows;
   if (!definite) {
     levels_.clear();
+    coarsest_.clear();
     return false;
   }
   x_.assign(levels_.size() + 1, Eigen::VectorXd());
@@ -320,7 +322,10 @@ bool ImplicitMultigrid::made_for(const ClothNetwork& net) const {
 void ImplicitMultigrid::solve(const FineLevel& fine, const std::vector<double>& r,
                               std::vector<double>& z) const {
   b_[0] = Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
-  cycle(0, fine);
+  if (levels_.empty())
+    solve_dense(coarsest_, b_[0], x_[0]);
+  else
+    cycle(0, fine);
   Eigen::Map<Eigen::VectorXd>(z.data(), static_cast<Eigen::Index>(z.size())) = x_[0];
 }
 

@@ -30,15 +30,16 @@ class ImplicitSystem;
 
 class ImplicitMultigrid {
  public:
-  // Above this the hierarchy's memory (a few hundred bytes per node) and build
-  // time are refused: the implicit step keeps Jacobi.
-  static constexpr std::size_t kMaxNodes = 1024 * 1024;
+  // Above this the build's assembly (about 3.5 kB a node while it lasts) would
+  // need hundreds of MB: the implicit step keeps Jacobi.
+  static constexpr std::size_t kMaxNodes = 256 * 256;
 
   // Builds the hierarchy of A at the blocks `system` holds. Returns false (and
   // holds none) beyond kMaxNodes or when the coarsest matrix is not definite.
+  // A cloth small enough to be its own coarsest level is factored whole.
   bool build(const ClothNetwork& net, const ImplicitSystem& system, double alpha, double beta,
              double gamma);
-  bool built() const { return !levels_.empty(); }
+  bool built() const { return !coarsest_.empty(); }
 
   // The finest level as it is now: y = A x for the present matrix, and the
   // inverses of its nodes' 3x3 diagonal blocks (9 per node, row major).
