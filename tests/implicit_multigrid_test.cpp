@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "asset_paths.h"
@@ -132,6 +134,31 @@ TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
   for (std::size_t i = 0; i < in.size(); ++i)
     moved = std::max(moved, (out.position(i) - before.position(i)).norm());
   EXPECT_GT(moved, 1e-9);  // and the change mattered
+}
+
+// The step's linear tolerance is the scene's solver.linear_tolerance: a looser
+// one takes fewer iterations; one outside its range is refused by name.
+TEST(ImplicitMultigrid, TheStepsToleranceIsASolverSetting) {
+  Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), 16);
+  scene.solver.integrator = IntegratorKind::implicit_euler;
+  scene.solver.adaptive = false;
+  scene.solver.dt = kStep;
+  long iterations[2];
+  const double tolerances[2] = {1e-10, 1e-4};
+  for (int k = 0; k < 2; ++k) {
+    scene.solver.linear_tolerance = tolerances[k];
+    Simulation sim = scene.make_simulation();
+    ASSERT_EQ(sim.advance(0.1), RunStatus::ok);
+    iterations[k] = sim.cg_iterations();
+  }
+  EXPECT_LT(2 * iterations[1], iterations[0]);
+  scene.solver.linear_tolerance = 0;
+  try {
+    scene.make_simulation();
+    FAIL() << "a zero tolerance was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("solver.linear_tolerance"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -26,8 +26,9 @@ namespace {
 
 class ImplicitEuler final : public Integrator {
  public:
-  ImplicitEuler(const ClothNetwork& net, double min_step_fraction)
+  ImplicitEuler(const ClothNetwork& net, double min_step_fraction, double linear_tolerance)
       : min_step_fraction_(min_step_fraction),
+        linear_tolerance_(linear_tolerance),
         system_(net),
         rhs_(3 * net.node_count()),
         dv_(3 * net.node_count()),
@@ -82,7 +83,7 @@ class ImplicitEuler final : public Integrator {
     }
     std::fill(dv_.begin(), dv_.end(), 0.0);
     const bool fresh = refresh_multigrid(net, h);
-    const CgResult cg = system_.solve(net, 1.0, h, h * h, rhs_, dv_, cg_tolerance,
+    const CgResult cg = system_.solve(net, 1.0, h, h * h, rhs_, dv_, linear_tolerance_,
                                       cg_max_iterations(n), &multigrid_);
     account(fresh, cg.iterations);
     for (std::size_t i = 0; i < n; ++i) {
@@ -182,8 +183,8 @@ class ImplicitEuler final : public Integrator {
   static int cg_max_iterations(std::size_t nodes) {
     return static_cast<int>(std::max<std::size_t>(100, 3 * nodes));
   }
-  static constexpr double cg_tolerance = 1e-10;
   double min_step_fraction_;
+  double linear_tolerance_;
   ImplicitSystem system_;
   ImplicitMultigrid multigrid_;
   double last_h_ = 0;
@@ -198,8 +199,9 @@ class ImplicitEuler final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction) {
-  return std::make_unique<ImplicitEuler>(net, min_step_fraction);
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction,
+                                                double linear_tolerance) {
+  return std::make_unique<ImplicitEuler>(net, min_step_fraction, linear_tolerance);
 }
 
 }  // namespace neurocloth
