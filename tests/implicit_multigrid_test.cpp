@@ -136,6 +136,19 @@ TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
   EXPECT_GT(moved, 1e-9);  // and the change mattered
 }
 
+// Beyond its limit it holds nothing (the implicit step then keeps Jacobi),
+// rather than assembling hundreds of MB.
+TEST(ImplicitMultigrid, RefusesAClothBeyondItsLimit) {
+  const Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/hanging.json"), 257);
+  const ClothNetwork net = scene.build_network();
+  ASSERT_GT(net.node_count(), ImplicitMultigrid::kMaxNodes);
+  ImplicitSystem system(net);
+  system.linearise(net, scene.initial_state());
+  ImplicitMultigrid mg;
+  EXPECT_FALSE(mg.build(net, system, 1.0, kStep, kStep * kStep));
+  EXPECT_FALSE(mg.built());
+}
+
 // The step's linear tolerance is the scene's solver.linear_tolerance: a looser
 // one takes fewer iterations; one outside its range is refused by name.
 TEST(ImplicitMultigrid, TheStepsToleranceIsASolverSetting) {
