@@ -9,9 +9,8 @@
 // definite. Factored once by a sparse Cholesky (fill-reducing order) and then
 // solved for the three components at a time, reading the factor once.
 //
-// It is the global step of the `projective` integrator and the preconditioner
-// of the implicit step's conjugate gradient. Both refactor only when what
-// built it changes (`same_as`): a weight, a mass, a pin, or the step.
+// It is the global step of the `projective` integrator, refactored only when
+// what built it changes (`same_as`): a weight, a mass, a pin, or the step.
 #include <cstdint>
 #include <vector>
 
