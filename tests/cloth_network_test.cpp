@@ -108,13 +108,10 @@ TEST(ClothNetwork, ExternalForceAndGravityReachTheAcceleration) {
   EXPECT_NEAR(a.at(1).y(), -10.0, 1e-14);
 }
 
-TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
-  // Newton's third law through the +-1 incidence weights, on a real cloth in a
-  // random configuration (exercises both the direct and the two-pass chunks).
-  Scene scene = test::asset_scene("free_cloth");
-  const ClothNetwork net = scene.build_network();
+// The scene's start with every node moved up to 1 cm and given a velocity up
+// to 1 m/s per axis, pseudo-randomly from `seed`.
+ClothState shaken(const Scene& scene, unsigned seed) {
   ClothState s = scene.initial_state();
-  unsigned seed = 7;
   auto rnd = [&seed] {
     seed = seed * 1103515245u + 12345u;
     return ((seed >> 8) % 2001) / 1000.0 - 1.0;
@@ -123,6 +120,15 @@ TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
     s.set_position(i, s.position(i) + 0.01 * Vec3(rnd(), rnd(), rnd()));
     s.set_velocity(i, Vec3(rnd(), rnd(), rnd()));
   }
+  return s;
+}
+
+TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
+  // Newton's third law through the +-1 incidence weights, on a real cloth in a
+  // random configuration (exercises both the direct and the two-pass chunks).
+  Scene scene = test::asset_scene("free_cloth");
+  const ClothNetwork net = scene.build_network();
+  const ClothState s = shaken(scene, 7);
   NodeVectors F(s.size());
   net.net_forces(s, F);
   Vec3 sum = Vec3::Zero();
@@ -157,16 +163,7 @@ TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
     Scene scene = test::asset_scene("free_cloth");
     ClothNetwork net = scene.build_network();
     net.springs.function = {kind, 0.05, 10.0};
-    ClothState s = scene.initial_state();
-    unsigned seed = 11;
-    auto rnd = [&seed] {
-      seed = seed * 1103515245u + 12345u;
-      return ((seed >> 8) % 2001) / 1000.0 - 1.0;
-    };
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      s.set_position(i, s.position(i) + 0.01 * Vec3(rnd(), rnd(), rnd()));
-      s.set_velocity(i, Vec3(rnd(), rnd(), rnd()));
-    }
+    ClothState s = shaken(scene, 11);
     const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
     s.set_position(b0, s.position(a0));  // spring 3 has no direction: no force
     SpringActivations act;

@@ -32,6 +32,8 @@ class ViewerApp : private ScriptPlayer::Target {
   ViewerApp(ViewerWindow& window, SimulationThread& sim, const Scene& scene,
             const ViewerOptions& options, const OrbitCamera& camera, std::optional<Script> script);
   ~ViewerApp() override;
+  // Shows in the Solver panel that the window runs another solver than the scene's.
+  void set_realtime_pick(const RealtimePick& pick) { scene_info_.realtime_pick = pick; }
 
   // Runs until the window closes, Esc, or the script ends; writes the report.
   // Returns the exit code.

@@ -7,6 +7,7 @@
 
 #include "input_error.h"
 #include "orbit_camera.h"
+#include "realtime_pick.h"
 #include "scene.h"
 #include "simulation_thread.h"
 #include "viewer_app.h"
@@ -36,6 +37,19 @@ int run(const ViewerOptions& options) {
   if (options.script) script = load_script(*options.script);
   OrbitCamera camera;
   if (options.camera) camera = parse_camera(*options.camera);
+  // A resized cloth may be too fine for the scene's solver to keep real time:
+  // then the window (and --sim-only, its speed reference) runs one that can.
+  // Not in lockstep: a deterministic run must not depend on this machine.
+  RealtimePick pick;
+  if (options.size && !options.lockstep) {
+    std::fprintf(stderr, "neurocloth: timing the scene's solver at %d x %d nodes...\n",
+                 *options.size, *options.size);
+    pick = pick_for_real_time(scene, [](const Scene& s) { return measure_cost(s, 0.4); });
+    if (pick.switched) {
+      scene.solver = pick.picked;
+      std::fprintf(stderr, "neurocloth: %s\n", pick.note.c_str());
+    }
+  }
   if (options.sim_only) return run_sim_only(scene, options);
 
   try {
@@ -53,6 +67,7 @@ int run(const ViewerOptions& options) {
   yield_to_simulation();
   ViewerWindow window(options.width, options.height, "neurocloth - " + scene.name, options.vsync);
   ViewerApp app(window, sim, scene, options, camera, std::move(script));
+  if (pick.switched) app.set_realtime_pick(pick);
   return app.run();
 }
 

@@ -1,7 +1,8 @@
 // Linearised backward Euler in the style of Baraff & Witkin (1998):
 //   (M + h D + h^2 K) dv = h (f0 + h (df/dx) v0),   v1 = v0 + dv,  p1 = p0 + h v1
 // with K = -df/dx and D = -df/dv from ImplicitSystem, solved by conjugate
-// gradient. One Newton iteration per step, first order.
+// gradient preconditioned with a multigrid V-cycle. One Newton iteration per
+// step, first order.
 //
 // One Newton iteration is backward Euler only while the forces stay close to
 // their linearisation over the step. On a very stiff, light cloth a large step
@@ -25,8 +26,9 @@ namespace {
 
 class ImplicitEuler final : public Integrator {
  public:
-  ImplicitEuler(const ClothNetwork& net, double min_step_fraction)
+  ImplicitEuler(const ClothNetwork& net, double min_step_fraction, double linear_tolerance)
       : min_step_fraction_(min_step_fraction),
+        linear_tolerance_(linear_tolerance),
         system_(net),
         rhs_(3 * net.node_count()),
         dv_(3 * net.node_count()),
@@ -80,8 +82,10 @@ class ImplicitEuler final : public Integrator {
         rhs_[3 * i + c] = free * h * (f[c] - h * kv_[3 * i + c]);
     }
     std::fill(dv_.begin(), dv_.end(), 0.0);
-    const CgResult cg =
-        system_.solve(net, 1.0, h, h * h, rhs_, dv_, cg_tolerance, cg_max_iterations(n));
+    const bool fresh = refresh_multigrid(net, h);
+    const CgResult cg = system_.solve(net, 1.0, h, h * h, rhs_, dv_, linear_tolerance_,
+                                      cg_max_iterations(n), &multigrid_);
+    account(fresh, cg.iterations);
     for (std::size_t i = 0; i < n; ++i) {
       out.vx[i] = in.vx[i] + dv_[3 * i];
       out.vy[i] = in.vy[i] + dv_[3 * i + 1];
@@ -145,12 +149,48 @@ class ImplicitEuler final : public Integrator {
     out = *at;
   }
 
+  // The CG preconditioner: a multigrid hierarchy of the step's matrix at an
+  // earlier state (ImplicitMultigrid). It is built when there is none, when a
+  // weight, mass or pin has changed, when a step length other than its own is
+  // asked for twice in a row (a one-off, such as the end of a frame, is
+  // preconditioned with the hierarchy there is), and when it has gone stale.
+  // Returns true when it built one.
+  bool refresh_multigrid(const ClothNetwork& net, double h) {
+    const bool repeated = h == last_h_;
+    last_h_ = h;
+    if (net.node_count() > ImplicitMultigrid::kMaxNodes) return false;  // Jacobi, bounded memory
+    if (!stale_ && multigrid_.made_for(net, 1.0, h, h * h)) return false;
+    if (!stale_ && multigrid_.made_for(net) && !repeated) return false;
+    stale_ = false;
+    extra_cost_ = 0;
+    fresh_iterations_ = -1;
+    // A hierarchy that cannot be built leaves none: Jacobi for this step.
+    multigrid_.build(net, system_, 1.0, h, h * h);
+    return true;
+  }
+
+  // Stale: the solves' iterations beyond those of a fresh hierarchy have cost,
+  // in multiply-adds, more than a new one would (a rent-or-buy rule: at most
+  // twice the cheapest work in hindsight). Counted, not timed, so that a run is
+  // the same bits on every machine.
+  void account(bool fresh, int iterations) {
+    if (!multigrid_.built()) return;
+    if (fresh || fresh_iterations_ < 0) fresh_iterations_ = iterations;
+    extra_cost_ += std::max(0, iterations - fresh_iterations_) * multigrid_.cycle_cost();
+    stale_ = extra_cost_ > multigrid_.build_cost();
+  }
+
   static int cg_max_iterations(std::size_t nodes) {
     return static_cast<int>(std::max<std::size_t>(100, 3 * nodes));
   }
-  static constexpr double cg_tolerance = 1e-10;
   double min_step_fraction_;
+  double linear_tolerance_;
   ImplicitSystem system_;
+  ImplicitMultigrid multigrid_;
+  double last_h_ = 0;
+  bool stale_ = false;
+  int fresh_iterations_ = -1;  // CG iterations of the first solve with this hierarchy
+  double extra_cost_ = 0;      // multiply-adds of the iterations beyond those since
   std::vector<double> rhs_, dv_, v0_, kv_;
   // Scratch of a split step: where the pieces start and land, with their forces.
   ClothState piece_a_, piece_b_;
@@ -159,8 +199,9 @@ class ImplicitEuler final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction) {
-  return std::make_unique<ImplicitEuler>(net, min_step_fraction);
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction,
+                                                double linear_tolerance) {
+  return std::make_unique<ImplicitEuler>(net, min_step_fraction, linear_tolerance);
 }
 
 }  // namespace neurocloth

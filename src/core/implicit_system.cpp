@@ -12,6 +12,35 @@ ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
     v->assign(dofs, 0.0);
 }
 
+void ImplicitSystem::invert_diagonal_blocks(const ClothNetwork& net, double alpha, double beta,
+                                            double gamma) {
+  const std::size_t n = net.node_count();
+  blocks_.assign(9 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double m = alpha / net.masses.inverse_mass[i];
+    for (int c = 0; c < 3; ++c)
+      blocks_[9 * i + 4 * c] = m;
+  }
+  const SpringLayer& L = net.springs;
+  for (std::size_t s = 0; s < L.size(); ++s) {
+    const double* K = &k_[6 * s];
+    const double* d = &dir_[3 * s];
+    const double c = beta * L.damping[s];
+    const double k[9] = {K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5]};
+    for (const std::int32_t node : {L.node_a[s], L.node_b[s]}) {
+      double* B = &blocks_[9 * static_cast<std::size_t>(node)];
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col)
+          B[3 * r + col] += gamma * k[3 * r + col] + c * d[r] * d[col];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (net.masses.free[i] == 0.0)
+      for (int e = 0; e < 9; ++e)
+        blocks_[9 * i + e] = e % 4 == 0 ? 1.0 : 0.0;
+  ImplicitMultigrid::invert_blocks(blocks_);
+}
+
 void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, bool exact_hessian) {
   const SpringLayer& L = net.springs;
   for (std::size_t i = 0; i < L.size(); ++i) {
@@ -44,7 +73,7 @@ void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, boo
 }
 
 void ImplicitSystem::apply(const ClothNetwork& net, double alpha, double beta, double gamma,
-                           const std::vector<double>& u, std::vector<double>& y) const {
+                           const double* u, double* y) const {
   const std::size_t n = net.node_count();
   for (std::size_t i = 0; i < n; ++i) {
     const double m = alpha / net.masses.inverse_mass[i];
@@ -85,9 +114,17 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 
 CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double beta, double gamma,
                                const std::vector<double>& b, std::vector<double>& x,
-                               double tolerance, int max_iterations) {
+                               double tolerance, int max_iterations,
+                               const ImplicitMultigrid* multigrid) {
   const std::size_t n = net.node_count();
   const SpringLayer& L = net.springs;
+  const bool cycled = multigrid != nullptr && multigrid->built();
+  ImplicitMultigrid::FineLevel fine;
+  if (cycled) {
+    invert_diagonal_blocks(net, alpha, beta, gamma);
+    fine.block_inverse = &blocks_;
+    fine.apply = [&](const double* u, double* y) { apply(net, alpha, beta, gamma, u, y); };
+  }
   // Jacobi preconditioner: the diagonal of A.
   for (std::size_t i = 0; i < n; ++i) {
     const double m = alpha / net.masses.inverse_mass[i];
@@ -124,8 +161,7 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
     r_[i] = b[i] - q_[i];
   for (std::size_t i = 0; i < n; ++i)
     if (net.masses.free[i] == 0.0) r_[3 * i] = r_[3 * i + 1] = r_[3 * i + 2] = 0.0;
-  for (std::size_t i = 0; i < r_.size(); ++i)
-    z_[i] = r_[i] / diag_[i];
+  precondition(cycled ? multigrid : nullptr, fine);
   p_ = z_;
   double rz = dot(r_, z_);
   double r_norm = std::sqrt(dot(r_, r_));
@@ -141,8 +177,7 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
       x[i] += step * p_[i];
       r_[i] -= step * q_[i];
     }
-    for (std::size_t i = 0; i < r_.size(); ++i)
-      z_[i] = r_[i] / diag_[i];
+    precondition(cycled ? multigrid : nullptr, fine);
     const double rz_new = dot(r_, z_);
     const double beta_cg = rz_new / rz;
     rz = rz_new;
@@ -155,6 +190,16 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
   result.relative_residual = r_norm / b_norm;
   result.converged = r_norm <= tolerance * b_norm;
   return result;
+}
+
+void ImplicitSystem::precondition(const ImplicitMultigrid* multigrid,
+                                  const ImplicitMultigrid::FineLevel& fine) {
+  if (multigrid != nullptr) {
+    multigrid->solve(fine, r_, z_);
+    return;
+  }
+  for (std::size_t i = 0; i < r_.size(); ++i)
+    z_[i] = r_[i] / diag_[i];
 }
 
 }  // namespace neurocloth

@@ -36,7 +36,8 @@ std::string integrator_names() {
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
-                                            double min_step_fraction, int iterations) {
+                                            double min_step_fraction, int iterations,
+                                            double linear_tolerance) {
   switch (kind) {
     case IntegratorKind::network:
       return make_network_propagation(net);
@@ -47,7 +48,7 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
     case IntegratorKind::rk4:
       return make_runge_kutta4(net);
     case IntegratorKind::implicit_euler:
-      return make_implicit_euler(net, min_step_fraction);
+      return make_implicit_euler(net, min_step_fraction, linear_tolerance);
     case IntegratorKind::projective:
       return make_projective(net, iterations);
   }

@@ -18,6 +18,10 @@ inline constexpr IntegratorKind kAllIntegrators[] = {
 
 // Local-global iterations per step of `projective` (its accuracy knob) unless a scene says.
 inline constexpr int kDefaultProjectiveIterations = 10;
+// The implicit step's conjugate gradient stops at |r| <= this * |b|. Tight
+// enough that the linear solve adds nothing visible to the step's own error
+// (docs/network.md, "Large steps").
+inline constexpr double kDefaultLinearTolerance = 1e-10;
 
 const char* to_string(IntegratorKind k);
 std::optional<IntegratorKind> parse_integrator(const std::string& name);
@@ -54,9 +58,11 @@ class Integrator {
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.
 // `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
-// `iterations` the projective step's local-global iterations.
+// `iterations` the projective step's local-global iterations; `linear_tolerance`
+// the implicit step's conjugate gradient tolerance (relative residual).
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
                                             double min_step_fraction = kDefaultMinStepFraction,
-                                            int iterations = kDefaultProjectiveIterations);
+                                            int iterations = kDefaultProjectiveIterations,
+                                            double linear_tolerance = kDefaultLinearTolerance);
 
 }  // namespace neurocloth

@@ -68,6 +68,8 @@ inline constexpr Limit kCollisionIterations{1, 100, "",
                                             "each pass costs a spatial-hash sweep every step"};
 inline constexpr Limit kIterations{1, 1000, "",
                                    "each local-global iteration costs a solve every step"};
+inline constexpr Limit kLinearTolerance{
+    1e-14, 1e-2, "", "the implicit step's relative residual, between rounding and 1%"};
 inline constexpr Limit kCheckInterval{1, 1000000, "", "checks come at least once a million steps"};
 }  // namespace limits
 

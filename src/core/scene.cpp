@@ -203,7 +203,7 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   const std::string field = "solver";
   in.allow_only(v, field,
                 {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
-                 "check_interval", "iterations"});
+                 "check_interval", "iterations", "linear_tolerance"});
   if (in.has(v, "integrator")) {
     const std::string name = in.string(v.at("integrator"), field + ".integrator");
     const auto kind = parse_integrator(name);
@@ -228,6 +228,9 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
         in.integer(v.at("check_interval"), field + ".check_interval", limits::kCheckInterval);
   if (in.has(v, "iterations"))
     s.iterations = in.integer(v.at("iterations"), field + ".iterations", limits::kIterations);
+  if (in.has(v, "linear_tolerance"))
+    s.linear_tolerance =
+        in.number(v.at("linear_tolerance"), field + ".linear_tolerance", limits::kLinearTolerance);
   return s;
 }
 

@@ -69,8 +69,8 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       checkpoint_(initial),
       monitor_(net_, initial, settings.divergence),
       integrator_(make_integrator(settings.integrator, net_,
-                                  settings.adaptive_settings.min_step_fraction,
-                                  settings.iterations)),
+                                  settings.adaptive_settings.min_step_fraction, settings.iterations,
+                                  settings.linear_tolerance)),
       threads_(settings.threads),
       start_(constraints_.empty() || !integrator_->steps_in_place() ? 0 : initial.size()),
       forces_{NodeVectors(net_.node_count()), NodeVectors(net_.node_count())} {
@@ -138,8 +138,9 @@ void Simulation::set_state(const ClothState& s) {
 void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
   // Made before anything changes too: an integrator may refuse this cloth.
-  std::unique_ptr<Integrator> integrator = make_integrator(
-      settings.integrator, net_, settings.adaptive_settings.min_step_fraction, settings.iterations);
+  std::unique_ptr<Integrator> integrator =
+      make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
+                      settings.iterations, settings.linear_tolerance);
   settings_ = settings;
   if (threads_.size() != settings_.threads) threads_ = OwnedStepThreads(settings_.threads);
   integrator_ = std::move(integrator);

@@ -53,6 +53,11 @@ struct SolverSettings {
   // The projective integrator's local-global iterations per step: its accuracy
   // knob (more converge to the implicit Euler solution). Other integrators ignore it.
   int iterations = kDefaultProjectiveIterations;
+  // The implicit_euler step's conjugate gradient stops at a residual of this
+  // fraction of its right-hand side. A setting rather than a function of
+  // `--accuracy`: that picks a measured (integrator, dt, iterations) row, and
+  // the trade does not sweep this yet. Other integrators ignore it.
+  double linear_tolerance = kDefaultLinearTolerance;
   // Threads that share each sweep of a step on a cloth of at least
   // kMinThreadedNodes nodes (step_threads.h). The results are bit-identical
   // to one thread's; only the wall time changes. 1: the calling thread alone.
@@ -93,6 +98,8 @@ inline void validate(const SolverSettings& s) {
     fail("adaptive", "false for the projective integrator, which takes fixed steps", 1);
   if (!limits::kIterations.contains(s.iterations))
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
+  if (!limits::kLinearTolerance.contains(s.linear_tolerance))
+    fail("linear_tolerance", "in [1e-14, 0.01]", s.linear_tolerance);
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));

@@ -9,9 +9,8 @@
 // definite. Factored once by a sparse Cholesky (fill-reducing order) and then
 // solved for the three components at a time, reading the factor once.
 //
-// It is the global step of the `projective` integrator and the preconditioner
-// of the implicit step's conjugate gradient. Both refactor only when what
-// built it changes (`same_as`): a weight, a mass, a pin, or the step.
+// It is the global step of the `projective` integrator, refactored only when
+// what built it changes (`same_as`): a weight, a mass, a pin, or the step.
 #include <cstdint>
 #include <vector>
 
@@ -59,7 +58,12 @@ class SpringLaplacian {
   std::vector<std::int32_t> col_start_, row_;
   std::vector<double> value_;
   std::vector<std::int32_t> perm_;  // node i is row perm_[i] of the factor
-  mutable std::vector<double> work_, r_, z_, p_, q_;
+  std::vector<double> inv_pivot_;   // 1 / the diagonal of L
+  // A node's x, y, z and a pad, for the solves (a GCC/Clang vector: the
+  // compilers we build with).
+  typedef double Node4 __attribute__((vector_size(32)));
+  mutable std::vector<Node4> work4_;
+  mutable std::vector<double> r_, z_, p_, q_;
   // y = P' x for the matrix with these spring weights (on this factor's nodes).
   void multiply3(const SpringLayer& layer, const std::vector<double>& spring_weight,
                  const double* x, double* y) const;

@@ -9,6 +9,7 @@
 
 #include "accuracy_control.h"
 #include "fuzzy_view.h"
+#include "realtime_pick.h"
 #include "scene.h"
 #include "simulation_thread.h"
 
@@ -41,6 +42,10 @@ class SceneInfo {
   // the accuracy slider.
   const SolverSettings& solver() const { return solver_; }
   const AccuracyTrade& trade() const { return trade_; }
+
+  // Set when the window replaced the scene's solver to keep real time
+  // (realtime_pick.h); cleared when the user takes the scene's own back.
+  std::optional<RealtimePick> realtime_pick;
 
   // Set for a linguistic material.
   std::optional<FuzzyView>& fuzzy() { return fuzzy_; }

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <iterator>
+#include <optional>
 #include <vector>
 
 #include "panels.h"
@@ -57,6 +58,23 @@ void accuracy(PanelContext& ctx) {
   if (!v.accuracy_pick.empty()) ImGui::TextWrapped("picked %s", v.accuracy_pick.c_str());
 }
 
+// The window chose another solver to keep a resized cloth in real time.
+void realtime_pick(PanelContext& ctx) {
+  std::optional<RealtimePick>& pick = ctx.scene.realtime_pick;
+  if (!pick || !pick->switched) return;
+  ImGui::TextWrapped("%s", pick->note.c_str());
+  if (ImGui::Button("use the scene's own solver")) {
+    const SolverSettings& own = pick->own;
+    ctx.post(SetSolver{own.integrator, own.dt, own.adaptive, own.adaptive_settings.safety});
+    UiValues& v = ctx.values;
+    for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
+      if (kAllIntegrators[i] == own.integrator) v.integrator = static_cast<int>(i);
+    v.adaptive = own.adaptive;
+    v.dt = own.dt;
+    pick.reset();
+  }
+}
+
 void progress(const SimulationStatus& s) {
   ImGui::Text("t = %.3f s, %ld steps (%ld rejected)", s.time, s.steps, s.rejected_steps);
   ImGui::Text("t_c = %.3g s, %.0f steps/s", s.step_cap, s.steps_per_second);
@@ -82,6 +100,7 @@ void energy_plot(const SimulationStatus& s) {
 }  // namespace
 
 void solver_panel(PanelContext& ctx) {
+  realtime_pick(ctx);
   settings(ctx);
   accuracy(ctx);
   ImGui::Separator();

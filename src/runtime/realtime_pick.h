@@ -1,0 +1,46 @@
+#pragma once
+// What the window runs when the scene's own solver cannot keep a resized cloth
+// in real time. A finer grid of the same cloth needs a smaller stable step on
+// more springs: the table drape at 128 x 128 runs about 0.01x real time with
+// its adaptive network step. The window then takes the large-step `projective`
+// integrator at one step per frame, with as many local-global iterations (its
+// accuracy knob) as the machine can afford, and says so; the Solver panel
+// offers the scene's own solver back.
+#include <functional>
+#include <string>
+
+#include "scene.h"
+
+namespace neurocloth {
+
+struct RealtimePick {
+  bool switched = false;  // false: the scene's own solver keeps up (or nothing was asked)
+  SolverSettings own;     // the scene's
+  SolverSettings picked;  // what runs (own when not switched)
+  double own_cost = 0;    // wall seconds per simulated second, measured on this machine
+  double picked_cost = 0;
+  std::string note;  // one line for the Solver panel and the terminal
+};
+
+// Wall seconds per simulated second of `scene` under its solver (a probe).
+using CostProbe = std::function<double(const Scene&)>;
+
+// The step a picked setting takes: one per frame of a 60 Hz display.
+inline constexpr double kRealtimeStep = 1.0 / 60.0;
+// A setting keeps up when it costs at most this share of real time: the rest
+// is for the window and for the cloth's harder moments than the probe's.
+inline constexpr double kRealtimeBudget = 0.7;
+
+// Keeps the scene's solver when `cost` says it keeps up; else the projective
+// step at kRealtimeStep with the most iterations (1..kDefaultProjectiveIterations)
+// whose cost, interpolated linearly from probes at 1 and 4 iterations, fits the
+// budget; else 1 iteration, saying that even it does not keep up.
+RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost);
+
+// Runs a copy of `scene` for about `wall_seconds` (at most `max_sim_seconds`
+// simulated) after one untimed step (a factorisation, a first contact) and
+// returns wall seconds per simulated second. Wall-clock: for the window's
+// start, never for a test.
+double measure_cost(const Scene& scene, double wall_seconds, double max_sim_seconds = 0.5);
+
+}  // namespace neurocloth
