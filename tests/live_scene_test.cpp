@@ -111,6 +111,25 @@ TEST(LiveScene, ASolverSetAsAWholeReachesTheSimulationOrIsRefused) {
   EXPECT_EQ(live.simulation().settings().dt, 0.01);
 }
 
+// solver_command: settings sent as one command arrive whole (the accuracy
+// slider's pick and the scene's own solver back both go this way).
+TEST(LiveScene, SolverSettingsSentAsOneCommandArriveWhole) {
+  LiveScene live(test::asset_scene("hanging"));
+  SolverSettings s = live.simulation().settings();
+  s.integrator = IntegratorKind::projective;
+  s.dt = 1.0 / 64;
+  s.adaptive = false;
+  s.adaptive_settings.safety = 0.3;
+  s.iterations = 3;
+  EXPECT_EQ(live.apply(solver_command(s)), "");
+  const SolverSettings& got = live.simulation().settings();
+  EXPECT_EQ(got.integrator, IntegratorKind::projective);
+  EXPECT_EQ(got.dt, 1.0 / 64);
+  EXPECT_FALSE(got.adaptive);
+  EXPECT_EQ(got.adaptive_settings.safety, 0.3);
+  EXPECT_EQ(got.iterations, 3);
+}
+
 TEST(LiveScene, OutOfRangeAndUnknownParametersAreRefusedAndChangeNothing) {
   LiveScene live(test::asset_scene("hanging"));
   const std::string high = live.apply(SetParameter{test::parameter("viscosity"), 500});

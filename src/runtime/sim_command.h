@@ -12,6 +12,7 @@
 #include "integrator.h"
 #include "material.h"
 #include "parameter_id.h"
+#include "solver_settings.h"
 #include "vec3.h"
 
 namespace neurocloth {
@@ -41,6 +42,11 @@ struct SetSolver {
   double safety;   // adaptive: t_c <= safety * stable step bound
   int iterations;  // projective: local-global iterations per step (ignored by the others)
 };
+// The command that asks for `s` as a whole: the one place solver settings
+// become a SetSolver (the accuracy slider's pick, the scene's own solver back).
+inline SetSolver solver_command(const SolverSettings& s) {
+  return SetSolver{s.integrator, s.dt, s.adaptive, s.adaptive_settings.safety, s.iterations};
+}
 // Pulls node `node` with `force` (N) towards `anchor` (drawn as a line) until released.
 struct ApplyForce {
   int node;

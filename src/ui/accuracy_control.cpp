@@ -44,8 +44,7 @@ AccuracyPick pick_for_accuracy(const AccuracyTrade& trade, double accuracy,
   const AccuracyChoice c =
       choose_for_accuracy(*trade.table, trade.path, accuracy, scene_solver, "accuracy");
   AccuracyPick p;
-  p.command = SetSolver{c.settings.integrator, c.settings.dt, c.settings.adaptive,
-                        c.settings.adaptive_settings.safety, c.settings.iterations};
+  p.command = solver_command(c.settings);
   char line[160];
   std::snprintf(line, sizeof line, ": measured %.3g%% at %.3g wall s per s",
                 100 * c.row.position_error_max, c.row.wall_per_simulated_second);

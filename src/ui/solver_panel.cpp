@@ -65,7 +65,7 @@ void realtime_pick(PanelContext& ctx) {
   ImGui::TextWrapped("%s", pick->note.c_str());
   if (ImGui::Button("use the scene's own solver")) {
     const SolverSettings& own = pick->own;
-    ctx.post(SetSolver{own.integrator, own.dt, own.adaptive, own.adaptive_settings.safety});
+    ctx.post(solver_command(own));  // its iterations too: the pick changed them
     UiValues& v = ctx.values;
     for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
       if (kAllIntegrators[i] == own.integrator) v.integrator = static_cast<int>(i);
