@@ -112,8 +112,9 @@ TEST(ImplicitMultigrid, KnowsWhatItWasMadeFor) {
 // same bits as an integrator that never saw the old weights; a stale
 // hierarchy preconditions differently and would not be.
 TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
-  const Simulation sim = swinging(12);
+  const Simulation sim = swinging(48);  // large enough to be given a hierarchy
   ClothNetwork net = sim.network();
+  ASSERT_GE(net.node_count(), ImplicitMultigrid::kMinNodes);
   const ClothState in = sim.state();
   const auto used = make_integrator(IntegratorKind::implicit_euler, net);
   NodeVectors f(net.node_count());

@@ -159,6 +159,7 @@ class ImplicitEuler final : public Integrator {
     const bool repeated = h == last_h_;
     last_h_ = h;
     if (net.node_count() > ImplicitMultigrid::kMaxNodes) return false;  // Jacobi, bounded memory
+    if (net.node_count() < ImplicitMultigrid::kMinNodes) return false;  // Jacobi, cheaper there
     if (!stale_ && multigrid_.made_for(net, 1.0, h, h * h)) return false;
     if (!stale_ && multigrid_.made_for(net) && !repeated) return false;
     stale_ = false;

@@ -33,6 +33,11 @@ class ImplicitMultigrid {
   // Above this the build's assembly (about 3.5 kB a node while it lasts) would
   // need hundreds of MB: the implicit step keeps Jacobi.
   static constexpr std::size_t kMaxNodes = 256 * 256;
+  // Below this the implicit step keeps Jacobi, which was cheaper there: on the
+  // hanging cloth at 32 x 32, 0.33 s per simulated second against the
+  // multigrid's 0.82 (126 against 20 iterations that cost far more each);
+  // at 64 x 64 and above the multigrid was cheaper (docs/network.md).
+  static constexpr std::size_t kMinNodes = 48 * 48;
 
   // Builds the hierarchy of A at the blocks `system` holds. Returns false (and
   // holds none) beyond kMaxNodes or when the coarsest matrix is not definite.
