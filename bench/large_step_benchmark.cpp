@@ -44,8 +44,7 @@ void Sizes(benchmark::internal::Benchmark* b) {
 BENCHMARK_CAPTURE(BM_LargeStep, projective, IntegratorKind::projective)->Apply(Sizes);
 BENCHMARK_CAPTURE(BM_LargeStep, implicit_euler, IntegratorKind::implicit_euler)->Apply(Sizes);
 // A looser linear solve (solver.linear_tolerance 1e-6), against the default 1e-10.
-BENCHMARK_CAPTURE(BM_LargeStep, implicit_euler_looser, IntegratorKind::implicit_euler,
-                  1e-6)
+BENCHMARK_CAPTURE(BM_LargeStep, implicit_euler_looser, IntegratorKind::implicit_euler, 1e-6)
     ->Apply(Sizes);
 
 }  // namespace
