@@ -238,17 +238,18 @@ TEST(SpringLaplacian, SolvesItsMatrix) {
   for (std::size_t i = 0; i < 3 * n; ++i)
     xyz[i] = rhs[i] = std::cos(1.3 * static_cast<double>(i));
   P.solve3(xyz.data());
-  // P x, row by row, from the matrix's definition.
+  // P x, row by row, from the matrix's definition (planar: all x, then y, then z).
   std::vector<double> px(3 * n);
   for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c)
-      px[3 * i + c] = (m.net.masses.free[i] != 0.0 ? node[i] : 1.0) * xyz[3 * i + c];
+    for (std::size_t c = 0; c < 3; ++c)
+      px[c * n + i] = (m.net.masses.free[i] != 0.0 ? node[i] : 1.0) * xyz[c * n + i];
   for (std::size_t s = 0; s < spring.size(); ++s) {
-    const int a = m.net.springs.node_a[s], b = m.net.springs.node_b[s];
+    const std::size_t a = std::size_t(m.net.springs.node_a[s]);
+    const std::size_t b = std::size_t(m.net.springs.node_b[s]);
     const bool fa = m.net.masses.free[a] != 0.0, fb = m.net.masses.free[b] != 0.0;
-    for (int c = 0; c < 3; ++c) {
-      if (fa) px[3 * a + c] += spring[s] * (xyz[3 * a + c] - (fb ? xyz[3 * b + c] : 0.0));
-      if (fb) px[3 * b + c] += spring[s] * (xyz[3 * b + c] - (fa ? xyz[3 * a + c] : 0.0));
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (fa) px[c * n + a] += spring[s] * (xyz[c * n + a] - (fb ? xyz[c * n + b] : 0.0));
+      if (fb) px[c * n + b] += spring[s] * (xyz[c * n + b] - (fa ? xyz[c * n + a] : 0.0));
     }
   }
   for (std::size_t i = 0; i < 3 * n; ++i)

@@ -23,6 +23,7 @@
 // displacements x - x0 (so the new velocity, displacement / h, carries no
 // cancellation of positions).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -30,6 +31,7 @@
 
 #include "integrators.h"
 #include "reciprocal_sqrt.h"
+#include "spring_chunks.h"
 #include "spring_laplacian.h"
 
 namespace neurocloth {
@@ -44,6 +46,7 @@ class Projective final : public Integrator {
         x_(3 * n_),
         prev_(3 * n_),
         rhs_(3 * n_),
+        base_(3 * n_),
         other_force_(n_) {}
   IntegratorKind kind() const override { return IntegratorKind::projective; }
   std::unique_ptr<Integrator> clone() const override { return std::make_unique<Projective>(*this); }
@@ -54,6 +57,7 @@ class Projective final : public Integrator {
                   const NodeVectors&, double h, ClothState& out) override {
     refactor_if_needed(net, h);
     inertial_target(net, inputs, in, h);
+    step_base(net);
     x_ = y_;
     // Without a factor (a matrix that is not positive definite: no weight can
     // make one in range) the step is the inertial one, and says it did not converge.
@@ -93,9 +97,9 @@ class Projective final : public Integrator {
       rho_ = std::min(kMaxRho, std::pow(last_update / first_half, 1.0 / span));
     for (std::size_t i = 0; i < n_; ++i) {
       const bool pinned = net.masses.free[i] == 0.0;  // moves on at its own velocity
-      out.vx[i] = pinned ? in.vx[i] : x_[3 * i] / h;
-      out.vy[i] = pinned ? in.vy[i] : x_[3 * i + 1] / h;
-      out.vz[i] = pinned ? in.vz[i] : x_[3 * i + 2] / h;
+      out.vx[i] = pinned ? in.vx[i] : x_[i] / h;
+      out.vy[i] = pinned ? in.vy[i] : x_[n_ + i] / h;
+      out.vz[i] = pinned ? in.vz[i] : x_[2 * n_ + i] / h;
       out.x[i] = in.x[i] + h * out.vx[i];
       out.y[i] = in.y[i] + h * out.vy[i];
       out.z[i] = in.z[i] + h * out.vz[i];
@@ -166,56 +170,37 @@ class Projective final : public Integrator {
     const double* const f[3] = {other_force_.x.data(), other_force_.y.data(),
                                 other_force_.z.data()};
     const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};
-    for (std::size_t i = 0; i < n_; ++i) {
-      const double free = net.masses.free[i], w = net.masses.inverse_mass[i];
-      for (int c = 0; c < 3; ++c)
-        y_[3 * i + c] = h * v[c][i] + free * h * h * (w * f[c][i] + g[c]);
-    }
+    for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n_; ++i) {
+        const double free = net.masses.free[i], w = net.masses.inverse_mass[i];
+        y_[c * n_ + i] = h * v[c][i] + free * h * h * (w * f[c][i] + g[c]);
+      }
     prev_ = y_;
   }
 
   // One local step at x_ and one global solve: rhs_ <- P^-1 (M y + sum_s A_s^T c_s),
-  // all in displacements.
+  // all in displacements. The springs are visited chunk by chunk as the
+  // network's force sweep visits them (spring_chunks.h), so each chunk's
+  // targets are computed in one vectorisable loop and added in another.
   void local_global(const ClothNetwork& net, const ClothState& in, double h) {
     const SpringLayer& L = net.springs;
-    const std::vector<double>& free = net.masses.free;
-    for (std::size_t i = 0; i < n_; ++i) {
-      const double m = free[i] != 0.0 ? node_weight_[i] : 1.0;  // a pinned row is x = y
-      for (int c = 0; c < 3; ++c)
-        rhs_[3 * i + c] = m * y_[3 * i + c];
-    }
-    const double threshold = 1.0 + L.function.strain_threshold;
-    for (std::size_t s = 0; s < L.size(); ++s) {
-      const std::int32_t a = L.node_a[s], b = L.node_b[s];
-      const Vec3 u(x_[3 * b] - x_[3 * a], x_[3 * b + 1] - x_[3 * a + 1],
-                   x_[3 * b + 2] - x_[3 * a + 2]);  // x_ab - x0_ab
-      const Vec3 d0 = in.position(b) - in.position(a);
-      const Vec3 d = d0 + u;
-      const double len2 = d.squaredNorm();
-      const double k = h * h * L.stiffness[s], k2 = h * h * extra_stiffness(net, s);
-      const double damping = h * L.damping[s];
-      Vec3 c;
-      if (len2 > kMinSpringLength * kMinSpringLength) {
-        // Without the divider: a square root and three divisions were a third of the step.
-        const double inv_len = reciprocal_sqrt(len2);
-        const double len = len2 * inv_len;
-        const Vec3 n = inv_len * d;
-        const double rest = L.rest_length[s];
-        const Vec3 q = len > threshold * rest ? Vec3(threshold * rest * n) : d;
-        // The terms' targets for u (a target for x_ab less x0_ab).
-        c = k * (rest * n - d0) + k2 * (q - d0) + damping * (u - u.dot(n) * n);
-      } else {  // no direction: no force, as in the network
-        c = (k + k2 + damping) * u;
-      }
-      // A_s^T c: u is x_b - x_a less its start. A spring to a pinned node moves its known
-      // end to the free node's side; the pinned row itself stays x = y.
-      const double w = spring_weight_[s];
-      const bool fa = free[a] != 0.0, fb = free[b] != 0.0;
-      for (int i = 0; i < 3; ++i) {
-        if (fa) rhs_[3 * a + i] -= c[i] - (fb ? 0.0 : w * y_[3 * b + i]);
-        if (fb) rhs_[3 * b + i] += c[i] + (fa ? 0.0 : w * y_[3 * a + i]);
-      }
-    }
+    rhs_ = base_;
+    double* const dst = rhs_.data();
+    const std::array<double*, 3> rows = {dst, dst + n_, dst + 2 * n_};
+    spring_chunks::Chunk& c = chunk_;
+    const bool stiffening = L.function.kind == SpringFunctionKind::stiffening;
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          if (stiffening)
+            spring_targets<SpringFunctionKind::stiffening>(L, first, count, a, b, in, h, c);
+          else
+            spring_targets<SpringFunctionKind::linear>(L, first, count, a, b, in, h, c);
+          spring_chunks::accumulate_chunk(count, a, b, c.fx, c.fy, c.fz, rows);
+        });
+    // A pinned row is x = y whatever its springs asked.
+    for (const std::int32_t p : pinned_)
+      for (std::size_t k = 0; k < 3; ++k)
+        rhs_[k * n_ + std::size_t(p)] = y_[k * n_ + std::size_t(p)];
     if (!factored_) return;
     if (near_)
       near_converged_ = laplacian_.solve3_near(L, spring_weight_, rhs_.data(), kNearTolerance,
@@ -225,9 +210,103 @@ class Projective final : public Integrator {
       laplacian_.solve3(rhs_.data());
   }
 
+  // The springs' terms of a chunk at x_: -c_s, the target every term of spring
+  // s asks for u (x_ab less x0_ab), negated so that accumulate_chunk's +1 at a
+  // and -1 at b give A_s^T c_s.
+  template <SpringFunctionKind K>
+  void spring_targets(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
+                      std::int32_t b, const ClothState& in, double h,
+                      spring_chunks::Chunk& out) const {
+    const double* const ux_a = x_.data() + a;
+    const double* const uy_a = x_.data() + n_ + a;
+    const double* const uz_a = x_.data() + 2 * n_ + a;
+    const double* const ux_b = x_.data() + b;
+    const double* const uy_b = x_.data() + n_ + b;
+    const double* const uz_b = x_.data() + 2 * n_ + b;
+    const double* const px_a = in.x.data() + a;
+    const double* const py_a = in.y.data() + a;
+    const double* const pz_a = in.z.data() + a;
+    const double* const px_b = in.x.data() + b;
+    const double* const py_b = in.y.data() + b;
+    const double* const pz_b = in.z.data() + b;
+    const double* const rest = L.rest_length.data() + first;
+    const double* const stiffness = L.stiffness.data() + first;
+    const double* const damping = L.damping.data() + first;
+    const double h2 = h * h, threshold = 1.0 + L.function.strain_threshold;
+    const double extra = L.function.stiffening_factor - 1.0;
+    double* const cx = out.fx;
+    double* const cy = out.fy;
+    double* const cz = out.fz;
+#pragma GCC ivdep
+    for (std::int32_t j = 0; j < count; ++j) {
+      const double ux = ux_b[j] - ux_a[j], uy = uy_b[j] - uy_a[j], uz = uz_b[j] - uz_a[j];
+      const double d0x = px_b[j] - px_a[j], d0y = py_b[j] - py_a[j], d0z = pz_b[j] - pz_a[j];
+      const double dx = d0x + ux, dy = d0y + uy, dz = d0z + uz;
+      const double len2 = dx * dx + dy * dy + dz * dz;
+      const bool has_direction = len2 > kMinSpringLength * kMinSpringLength;
+      // Without the divider: a square root and three divisions were a third of the step.
+      const double inv_len = reciprocal_sqrt(has_direction ? len2 : 1.0);
+      const double nx = inv_len * dx, ny = inv_len * dy, nz = inv_len * dz;
+      const double k = h2 * stiffness[j], d = h * damping[j], r = rest[j];
+      const double along = ux * nx + uy * ny + uz * nz;
+      // stiffness: rest-length along n; damping: u without its part along n.
+      double tx = k * (r * nx - d0x) + d * (ux - along * nx);
+      double ty = k * (r * ny - d0y) + d * (uy - along * ny);
+      double tz = k * (r * nz - d0z) + d * (uz - along * nz);
+      double k_all = k + d;
+      if constexpr (K == SpringFunctionKind::stiffening) {
+        // stiffening: x_ab clipped to (1 + threshold) rest.
+        const double k2 = k * extra, limit = threshold * r;
+        const bool clip = len2 * inv_len > limit;
+        tx += k2 * ((clip ? limit * nx : dx) - d0x);
+        ty += k2 * ((clip ? limit * ny : dy) - d0y);
+        tz += k2 * ((clip ? limit * nz : dz) - d0z);
+        k_all += k2;
+      }
+      // No direction: no force, as in the network.
+      cx[j] = -(has_direction ? tx : k_all * ux);
+      cy[j] = -(has_direction ? ty : k_all * uy);
+      cz[j] = -(has_direction ? tz : k_all * uz);
+    }
+  }
+
+  // What every iteration of a step starts its right-hand side from: M y on
+  // free rows, y on pinned ones, and on a free node the pull w y_p of each
+  // spring to a pinned node p (A_s^T moves the known end to its side).
+  void step_base(const ClothNetwork& net) {
+    const std::vector<double>& free = net.masses.free;
+    if (free != pins_of_) {
+      pins_of_ = free;
+      pinned_.clear();
+      pin_springs_.clear();
+      for (std::size_t i = 0; i < n_; ++i)
+        if (free[i] == 0.0) pinned_.push_back(std::int32_t(i));
+      const SpringLayer& L = net.springs;
+      for (std::size_t s = 0; s < L.size(); ++s)
+        if ((free[std::size_t(L.node_a[s])] == 0.0) != (free[std::size_t(L.node_b[s])] == 0.0))
+          pin_springs_.push_back(std::int32_t(s));
+    }
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double m = free[i] != 0.0 ? node_weight_[i] : 1.0;
+      for (std::size_t k = 0; k < 3; ++k)
+        base_[k * n_ + i] = m * y_[k * n_ + i];
+    }
+    for (const std::int32_t s : pin_springs_) {
+      std::size_t a = std::size_t(net.springs.node_a[std::size_t(s)]);
+      std::size_t b = std::size_t(net.springs.node_b[std::size_t(s)]);
+      if (free[a] == 0.0) std::swap(a, b);  // a: the free end
+      for (std::size_t k = 0; k < 3; ++k)
+        base_[k * n_ + a] += spring_weight_[std::size_t(s)] * y_[k * n_ + b];
+    }
+  }
+
   int iterations_;
   std::size_t n_;
-  std::vector<double> y_, x_, prev_, rhs_;
+  // Displacements and right-hand sides, planar (every node's x, then y, then z).
+  std::vector<double> y_, x_, prev_, rhs_, base_;
+  spring_chunks::Chunk chunk_;
+  std::vector<double> pins_of_;  // the pins pinned_ and pin_springs_ were found for
+  std::vector<std::int32_t> pinned_, pin_springs_;
   NodeVectors other_force_;
   std::vector<double> node_weight_, spring_weight_;
   SpringLaplacian laplacian_;

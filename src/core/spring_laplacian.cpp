@@ -59,8 +59,11 @@ void SpringLaplacian::solve3(double* xyz) const {
   // x, y, z and a pad per node: one 4-wide multiply and subtract per factor
   // entry instead of three scalar ones.
   Node4* y = work4_.data();
+  const double* const x0 = xyz;
+  const double* const y0 = xyz + n_;
+  const double* const z0 = xyz + 2 * n_;
   for (std::int32_t i = 0; i < n_; ++i)
-    y[perm_[i]] = Node4{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2], 0.0};
+    y[perm_[i]] = Node4{x0[i], y0[i], z0[i], 0.0};
   // L y' = y: each column's pivot, then its entries below.
   for (std::int32_t j = 0; j < n_; ++j) {
     const std::int32_t begin = col_start_[j], end = col_start_[j + 1];
@@ -93,26 +96,27 @@ void SpringLaplacian::solve3(double* xyz) const {
   }
   for (std::int32_t i = 0; i < n_; ++i) {
     const Node4& t = y[perm_[i]];
-    xyz[3 * i] = t[0];
-    xyz[3 * i + 1] = t[1];
-    xyz[3 * i + 2] = t[2];
+    xyz[i] = t[0];
+    xyz[n_ + i] = t[1];
+    xyz[2 * n_ + i] = t[2];
   }
 }
 
 void SpringLaplacian::multiply3(const SpringLayer& layer, const std::vector<double>& spring_weight,
                                 const double* x, double* y) const {
-  for (std::int32_t i = 0; i < n_; ++i) {
+  const std::size_t n = static_cast<std::size_t>(n_);
+  for (std::size_t i = 0; i < n; ++i) {
     const double d = free_[i] != 0.0 ? node_weight_[i] : 1.0;
-    for (int c = 0; c < 3; ++c)
-      y[3 * i + c] = d * x[3 * i + c];
+    for (std::size_t c = 0; c < 3; ++c)
+      y[c * n + i] = d * x[c * n + i];
   }
   for (std::size_t s = 0; s < layer.size(); ++s) {
-    const std::int32_t a = layer.node_a[s], b = layer.node_b[s];
+    const std::size_t a = std::size_t(layer.node_a[s]), b = std::size_t(layer.node_b[s]);
     const bool fa = free_[a] != 0.0, fb = free_[b] != 0.0;
     const double w = spring_weight[s];
-    for (int c = 0; c < 3; ++c) {
-      if (fa) y[3 * a + c] += w * (x[3 * a + c] - (fb ? x[3 * b + c] : 0.0));
-      if (fb) y[3 * b + c] += w * (x[3 * b + c] - (fa ? x[3 * a + c] : 0.0));
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (fa) y[c * n + a] += w * (x[c * n + a] - (fb ? x[c * n + b] : 0.0));
+      if (fb) y[c * n + b] += w * (x[c * n + b] - (fa ? x[c * n + a] : 0.0));
     }
   }
 }

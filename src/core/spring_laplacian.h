@@ -28,7 +28,9 @@ class SpringLaplacian {
   bool factored() const { return n_ > 0; }
   std::size_t nodes() const { return static_cast<std::size_t>(n_); }
 
-  // xyz <- P^-1 xyz, three components interleaved (x0 y0 z0 x1 ...): 3 * nodes() values.
+  // xyz <- P^-1 xyz for the three components stored one after another
+  // (x0 x1 ... y0 y1 ... z0 z1 ...): 3 * nodes() values. Planar, as the
+  // cloth's state is, so the local step's spring loops read whole vectors.
   void solve3(double* xyz) const;
 
   // True when factor() was last called with exactly these arguments.
@@ -44,8 +46,8 @@ class SpringLaplacian {
   // Solves P' x = b for the matrix P' of (node_weight_, spring_weight) — another step
   // or other weights on the same nodes — by conjugate gradient with this factor
   // as the preconditioner: exact to `tolerance` (relative residual) in a few
-  // iterations when P' is close to the factored P. `xyz` holds b on entry, x on
-  // return. Returns the iterations taken, or -1 when it did not converge.
+  // iterations when P' is close to the factored P. `xyz` (planar, as solve3's)
+  // holds b on entry, x on return. Returns the iterations taken, or -1 when it did not converge.
   int solve3_near(const SpringLayer& layer, const std::vector<double>& spring_weight, double* xyz,
                   double tolerance, int max_iterations) const;
   // Entries of the factor (a cost figure: each solve reads them once).
