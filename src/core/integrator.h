@@ -46,14 +46,18 @@ class Integrator {
   // (infinity when unconditionally stable). The adaptive step scales its bound by it.
   virtual double stability_limit() const = 0;
   // Advances `in` by h into `out` (which must not alias `in` unless steps_in_place()).
-  // `start_force` is net_forces(in, inputs): the caller always has it, for the
-  // adaptive rule or its FSAL cache. Every force evaluation of the step reads
-  // the same `inputs`.
+  // `start_force` is net_forces(in, inputs) (stale when reads_start_force() is
+  // false): the caller has it for the adaptive rule, the step its FSAL cache. Every force
+  // evaluation of the step reads the same `inputs`.
   virtual StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                           const NodeVectors& start_force, double h, ClothState& out) = 0;
   // True when `out` may be the same object as `in`: a fixed step then touches
   // one state buffer instead of two (half the memory traffic on large cloths).
   virtual bool steps_in_place() const { return false; }
+  // False when step() never reads `start_force` (its forces come from its own
+  // sweeps): a fixed step then passes stale forces instead of paying a sweep
+  // over every spring for them.
+  virtual bool reads_start_force() const { return true; }
 };
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.

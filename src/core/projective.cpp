@@ -52,6 +52,7 @@ class Projective final : public Integrator {
   std::unique_ptr<Integrator> clone() const override { return std::make_unique<Projective>(*this); }
   int order() const override { return 1; }
   double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
+  bool reads_start_force() const override { return false; }  // other_forces() instead
 
   StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors&, double h, ClothState& out) override {

@@ -325,7 +325,7 @@ void Simulation::fixed_step(double h) {
 
 void Simulation::fixed_step_now(double h) {
   begin_step();
-  ensure_front_forces();
+  if (integrator_->reads_start_force()) ensure_front_forces();
   // A fixed step is never rejected, so an integrator that can may write over
   // the current state (the checkpoint still guards against divergence). With
   // constraints, the start positions are kept aside first: copying three arrays
