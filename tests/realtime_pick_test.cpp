@@ -148,7 +148,8 @@ TEST(RealtimePick, QuotesThePickedSettingsErrorMeasuredAtThisSize) {
   EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.075);
   EXPECT_EQ(pick.measured_in, path);
   EXPECT_NE(pick.note.find("Measured at 8 x 8: projective 4 it., dt 1/60 s: max position error "
-                           "7.5% of the cloth's size over its first 1 s (rms 1.9%), in " +
+                           "7.5% of the cloth's size over its first 1 s (rms 1.9%; the reference "
+                           "is good to 0.1%), in " +
                            path),
             std::string::npos)
       << pick.note;
@@ -167,6 +168,20 @@ TEST(RealtimePick, PrefersTheLeastMeasuredErrorAmongTheSettingsThatFit) {
   ASSERT_TRUE(pick.measured);
   EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.05);
   EXPECT_NEAR(pick.picked_cost, 0.1 + 0.14 * 2, 1e-12);
+}
+
+// Errors within the reference's resolution (here 0.1% of the size) cannot be
+// told apart: then the most iterations that fit, as without a trade.
+TEST(RealtimePick, ErrorsTheReferenceCannotTellApartAreATie) {
+  const std::string path = write_trade(
+      "drape.8.csv", 8,
+      {projective_row(kRealtimeStep, 2, 0.0500), projective_row(kRealtimeStep, 4, 0.0509)});
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  const RealtimePick pick =
+      pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
+  EXPECT_EQ(pick.picked.iterations, 4);
+  ASSERT_TRUE(pick.measured);
+  EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.0509);
 }
 
 TEST(RealtimePick, SaysWhenTheErrorAtThisSizeIsNotMeasuredAndHowToMeasureIt) {

@@ -49,13 +49,15 @@ const TradeRow* measured_row(const SizedTrade& trade, int iterations) {
 }
 
 // Of the counts up to `most` (all fit the budget), the measured one of least
-// error (ties: more iterations); `most` when none is measured.
+// error; `most` when none is measured. Errors that differ by no more than the
+// reference's resolution cannot be told apart: the more iterations win then.
 int least_measured_error(const SizedTrade& trade, int most) {
   int best = most;
   const TradeRow* best_row = nullptr;
+  const double tie = trade.table ? reference_resolution(*trade.table) : 0;
   for (int it = most; it >= 1; --it)
     if (const TradeRow* row = measured_row(trade, it);
-        row && (!best_row || row->position_error_max < best_row->position_error_max)) {
+        row && (!best_row || row->position_error_max < best_row->position_error_max - tie)) {
       best = it;
       best_row = row;
     }
@@ -71,9 +73,11 @@ std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, in
     char s[512];
     std::snprintf(s, sizeof s,
                   " Measured at %s: projective %d it., dt 1/60 s: max position error %.2g%% of "
-                  "the cloth's size over its first %g s (rms %.2g%%), in %s.",
+                  "the cloth's size over its first %g s (rms %.2g%%; the reference is good to "
+                  "%.2g%%), in %s.",
                   grid.c_str(), row.iterations, 100 * row.position_error_max, trade.table->seconds,
-                  100 * row.position_error_rms, pick.measured_in.c_str());
+                  100 * row.position_error_rms, 100 * reference_resolution(*trade.table),
+                  pick.measured_in.c_str());
     return s;
   }
   std::string says = " Its error at " + grid + " is not measured";
@@ -98,7 +102,7 @@ SizedTrade find_sized_trade(const std::string& scene_path, int n, const std::str
   // (docs/tradeoff.md, "Sized trades": what it cost at 64 and 128).
   trade.measure = "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
                   " --seconds 1 --samples 4 --methods projective --dt 1/60 " +
-                  "--projective-iterations " + iterations + " --reference-budget 1800 --out " + out;
+                  "--projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
   std::error_code missing;
   if (!std::filesystem::exists(path, missing)) return trade;
   try {
