@@ -97,6 +97,21 @@ TEST(AccuracyControl, ASceneWithoutATradeSaysHowToMakeOne) {
   EXPECT_NE(t.note.find("tradeoff"), std::string::npos) << t.note;
 }
 
+// A resized cloth is another cloth: the scene's own trade (hanging.csv, at
+// 20 x 20) is not offered for it, only one measured at its size.
+TEST(AccuracyControl, AResizedClothGetsOnlyATradeMeasuredAtItsSize) {
+  const AccuracyTrade own = load_accuracy_trade(hanging());
+  ASSERT_TRUE(own.table.has_value()) << own.note;
+  const AccuracyTrade t = load_accuracy_trade(hanging(), 128);
+  EXPECT_FALSE(t.table.has_value());
+  EXPECT_NE(t.path.find("hanging.128.csv"), std::string::npos) << t.path;
+  EXPECT_NE(t.note.find("no trade measured at 128 x 128"), std::string::npos) << t.note;
+  EXPECT_NE(t.note.find("--size 128"), std::string::npos) << t.note;
+  const SceneInfo resized(resized_grid(load_scene(hanging()), 24));
+  EXPECT_FALSE(resized.trade().table.has_value()) << resized.trade().path;
+  EXPECT_NE(resized.trade().path.find("hanging.24.csv"), std::string::npos);
+}
+
 // The slider's request, as the panel and a script's "set accuracy" make it:
 // one SetSolver with the pick, mirrored in the panel's values.
 TEST(AccuracyControl, ARequestPostsThePickAsOneSetSolverAndMirrorsIt) {

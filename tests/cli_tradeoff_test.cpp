@@ -85,6 +85,28 @@ TEST_F(Cli, TradeoffWritesTheTableTheChartAndTheSummary) {
   EXPECT_NE(md.find("![error against cost](hanging.png)"), std::string::npos) << md;
 }
 
+// The window's settings exactly, on the cloth resized: projective at 1/60 s and
+// the counts asked, no halving, and the grid recorded in the file.
+TEST_F(Cli, TradeoffAtASizeRunsTheStepsAskedAndRecordsTheGrid) {
+  const std::string report = (out_dir() / "drape").string();
+  const Outcome r =
+      run({"tradeoff", scene_asset("table_drape"), "--size", "6", "--seconds", "0.25", "--samples",
+           "1", "--methods", "projective", "--dt", "1/60", "--projective-iterations", "1,3",
+           "--reference-budget", "600", "--out", report});
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  EXPECT_NE(r.out.find("table_drape at 6 x 6"), std::string::npos) << r.out;
+  const TradeTable t = read_sized_trade(report + ".csv", 6);
+  EXPECT_EQ(t.grid_rows, 6);
+  std::vector<int> iterations;
+  for (const TradeRow& row : t.rows)
+    if (row.method == "projective") {
+      EXPECT_EQ(row.dt, 1.0 / 60) << "exactly the window's step";
+      EXPECT_EQ(row.steps, 15);
+      iterations.push_back(row.iterations);
+    }
+  EXPECT_EQ(iterations, (std::vector<int>{1, 3}));
+}
+
 TEST_F(Cli, AccuracyPicksTheCheapestSettingFromAGivenTrade) {
   const std::string trade = write("trade.csv", hand_made_trade());
   Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--accuracy", "0.01",
@@ -180,6 +202,23 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--projective-iterations", "4,0"});
   expect_input_error(args, {"--projective-iterations", "must be in [1, 1000]"});
+  // --size: a grid a side, on a grid scene; --dt: steps that land on every sample time.
+  for (const char* size : {"1", "1025"}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {"--size", size});
+    expect_input_error(args, {"--size", "must be in [2, 1024]"});
+  }
+  args = quick_tradeoff(scene_asset("mesh_square"), report);
+  args.insert(args.end(), {"--size", "8"});
+  expect_input_error(args, {"--size", "not a grid scene"});
+  for (const auto& [dt, why] : {std::pair{"1/60x", "not a step in s"},
+                                {"1/0", "not a step in s"},
+                                {"1/7", "does not divide the sample interval 0.025 s"},
+                                {"1e-9", "must be in [1e-06, "}}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {"--dt", dt});
+    expect_input_error(args, {"--dt", why});
+  }
   // A folder that does not exist: refused before measuring, naming the file.
   expect_input_error(quick_tradeoff(scene_asset("hanging"), dir_.string() + "/nowhere/report"),
                      {"--out", "nowhere/report.csv"}, 10);

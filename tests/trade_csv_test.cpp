@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <string>
@@ -23,6 +25,7 @@ TradeTable csv_table() {
   t.scene_file = "assets/scenes/hand.json";
   t.cloth_size = 1.3435;
   t.energy_scale = 52.45;
+  t.grid_rows = t.grid_cols = 32;
   ReferenceReport& r = t.reference;
   r.dt = 6.103515625e-05;
   r.change = 1.07e-10;
@@ -76,6 +79,8 @@ TEST(TradeoffCsv, RoundTrips) {
   EXPECT_EQ(back.scene_file, t.scene_file);
   EXPECT_EQ(back.seconds, 2);
   EXPECT_EQ(back.samples, 8);
+  EXPECT_EQ(back.grid_rows, 32);
+  EXPECT_EQ(back.grid_cols, 32);
   EXPECT_EQ(back.reference.dt, t.reference.dt);  // settings: exact
   EXPECT_EQ(back.reference.change, t.reference.change);
   EXPECT_EQ(back.reference.change_by_sample, t.reference.change_by_sample);
@@ -174,6 +179,10 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
       {"a misspelt optional column", "method,", "iterations", "iterashuns", "header", "iterashuns",
        "column 5 must be 'iterations' or 'steps', got 'iterashuns'"},
       {"a bad metadata value", "# seconds", "2", "two", "# seconds", "two", "not a finite number"},
+      {"a grid without its x", "# grid", "32x32", "32by32", "# grid", "32by32", "ROWSxCOLS"},
+      {"a grid of one node a side", "# grid", "32x32", "1x32", "# grid", "1x32", "at least 2"},
+      {"a grid side that is not a count", "# grid", "32x32", "32x3.5", "# grid", "3.5",
+       "not a whole number"},
       {"reference_met neither yes nor no", "# reference_met", "yes", "maybe", "# reference_met",
        "maybe", "yes or no"},
   };
@@ -348,6 +357,38 @@ TEST(TradeoffCsv, AFileWithoutTheIterationsColumnReads) {
   EXPECT_EQ(e->line(), line);
   EXPECT_EQ(e->field(), "status");
   EXPECT_NE(e->message().find("expected 12 fields, found 11"), std::string::npos) << e->what();
+}
+
+// A trade holds at the grid it was measured on: read for another size (or from
+// a file that does not say), it is refused, naming the file and the field.
+TEST(TradeoffCsv, ASizedTradeRefusesAnotherSize) {
+  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/trade_csv";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/at32.csv";
+  std::ofstream(path, std::ios::trunc) << trade_csv(csv_table());
+  EXPECT_EQ(read_sized_trade(path, 32).grid_rows, 32);
+  try {
+    read_sized_trade(path, 128);
+    ADD_FAILURE() << "a 32 x 32 trade was read for 128 x 128";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.field(), "# grid");
+    EXPECT_NE(e.message().find("measured on a 32 x 32 grid, not 128 x 128"), std::string::npos)
+        << e.what();
+  }
+  TradeTable unsized = csv_table();
+  unsized.grid_rows = unsized.grid_cols = 0;
+  const std::string old = dir + "/unsized.csv";
+  std::ofstream(old, std::ios::trunc) << trade_csv(unsized);
+  EXPECT_EQ(read_trade_csv(old).grid_rows, 0);  // still a trade at the scene's own size
+  try {
+    read_sized_trade(old, 32);
+    ADD_FAILURE() << "a trade that does not say its grid was read as 32 x 32";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), old);
+    EXPECT_EQ(e.field(), "# grid");
+    EXPECT_NE(e.message().find("missing"), std::string::npos) << e.what();
+  }
 }
 
 TEST(TradeoffCsv, TheCommittedTradesRead) {

@@ -82,6 +82,12 @@ int main(int argc, char** argv) {
       ->add_option("--projective-iterations", trade.projective_iterations,
                    "Projective's iterations per step, each run at every step (default 1,2,4,10,30)")
       ->delimiter(',');
+  tradeoff->add_option("--size", trade.size,
+                       "Measure the scene's cloth resized to N x N (as the window's --size)");
+  tradeoff
+      ->add_option("--dt", trade.steps,
+                   "Run the fixed-step methods at only these steps (s; e.g. 1/60), no halving")
+      ->delimiter(',');
 
   RelaxOptions rel;
   auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");

@@ -60,6 +60,11 @@ struct TradeoffOptions {
   int levels = 7;                          // settings per method at most
   std::vector<std::string> methods;        // empty: all
   std::vector<int> projective_iterations;  // empty: the sweep's own grid
+  // --size N: the scene's cloth resized to N x N (resized_grid), as the window's
+  // --size runs it; the trade then holds at that size only.
+  std::optional<int> size;
+  // --dt: the only steps the fixed-step methods run, each "0.01" or "1/60" (s).
+  std::vector<std::string> steps;
 };
 int run_tradeoff(const TradeoffOptions& options);
 // The parts `simulate --accuracy` shares when it has to measure a trade itself:

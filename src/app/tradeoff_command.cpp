@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -38,6 +40,22 @@ void check_writable(const std::string& report) {
   std::remove(probe.c_str());
 }
 
+// A step as "0.015625" or as a fraction "1/60" (a display's frame is not a
+// short decimal); nullopt when it is neither.
+std::optional<double> parse_step(const std::string& text) {
+  const auto number = [](const std::string& t) -> std::optional<double> {
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+  };
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return number(text);
+  const auto top = number(text.substr(0, slash)), bottom = number(text.substr(slash + 1));
+  if (!top || !bottom || !(*bottom > 0)) return std::nullopt;
+  return *top / *bottom;
+}
+
 }  // namespace
 
 TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
@@ -61,7 +79,17 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   for (int i : o.projective_iterations)
     if (!limits::kIterations.contains(i))
       throw InputError("command line", "--projective-iterations", limits::kIterations.refusal(i));
+  if (o.size && !limits::kGridSize.contains(*o.size))
+    throw InputError("command line", "--size", limits::kGridSize.refusal(*o.size));
   TradeoffPlan plan;
+  for (const std::string& text : o.steps) {
+    const std::optional<double> dt = parse_step(text);
+    if (!dt)
+      throw InputError("command line", "--dt", "not a step in s (0.01 or 1/60): '" + text + "'");
+    if (const std::string why = step_refusal(*dt, o.seconds / o.samples); !why.empty())
+      throw InputError("command line", "--dt", text + ": " + why);
+    plan.steps.push_back(*dt);
+  }
   if (!o.projective_iterations.empty()) plan.projective_iterations = o.projective_iterations;
   plan.seconds = o.seconds;
   plan.samples = o.samples;
@@ -83,12 +111,24 @@ TradeTable measure_trade(const Scene& shipped, const std::string& scene_file,
 
 int run_tradeoff(const TradeoffOptions& o) {
   const TradeoffPlan plan = tradeoff_plan(o);
-  const Scene scene = load_scene(o.scene);
+  Scene scene = load_scene(o.scene);
+  if (o.size) {
+    if (!scene.grid)
+      throw InputError("command line", "--size",
+                       o.scene + " is not a grid scene: it has no N x N to resize to");
+    try {
+      scene = resized_grid(scene, *o.size);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("command line", "--size", e.what());
+    }
+  }
   if (o.out.empty()) throw InputError("command line", "--out", "must name a file");
   check_writable(o.out);
 
-  std::printf("tradeoff %s: %g s simulated per run, compared at %d times\n", scene.name.c_str(),
-              plan.seconds, plan.samples);
+  std::printf(
+      "tradeoff %s%s: %g s simulated per run, compared at %d times\n", scene.name.c_str(),
+      o.size ? (" at " + std::to_string(*o.size) + " x " + std::to_string(*o.size)).c_str() : "",
+      plan.seconds, plan.samples);
   std::fflush(stdout);
   const TradeTable trade = measure_trade(scene, o.scene, plan);
 

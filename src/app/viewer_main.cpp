@@ -44,7 +44,12 @@ int run(const ViewerOptions& options) {
   if (options.size && !options.lockstep) {
     std::fprintf(stderr, "neurocloth: timing the scene's solver at %d x %d nodes...\n",
                  *options.size, *options.size);
-    pick = pick_for_real_time(scene, [](const Scene& s) { return measure_cost(s, 0.4); });
+    // What the picked settings' error is at this size, if it was measured.
+    const SizedTrade trade = find_sized_trade(options.scene, *options.size);
+    if (!trade.problem.empty())
+      std::fprintf(stderr, "neurocloth: %s (not quoted)\n", trade.problem.c_str());
+    pick = pick_for_real_time(
+        scene, [](const Scene& s) { return measure_cost(s, 0.4); }, trade);
     if (pick.switched) {
       scene.solver = pick.picked;
       std::fprintf(stderr, "neurocloth: %s\n", pick.note.c_str());

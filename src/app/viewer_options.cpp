@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "asset_paths.h"
+#include "physical_limits.h"
 
 namespace neurocloth {
 
@@ -12,7 +13,8 @@ std::optional<int> parse_viewer_options(int argc, char** argv, ViewerOptions& o)
   app.add_option("--script", o.script, "Replay the timed input events in FILE (JSON), then exit");
   app.add_option("--report", o.report, "Write what happened to FILE (JSON) on exit");
   app.add_option("--size", o.size, "Run the scene's cloth as an N x N grid")
-      ->check(CLI::Range(2, 1024));
+      ->check(CLI::Range(static_cast<int>(limits::kGridSize.low),
+                         static_cast<int>(limits::kGridSize.high)));
   app.add_option("--camera", o.camera, "Start camera: yaw,pitch,distance[,tx,ty,tz] (rad, m)");
   app.add_option("--width", o.width, "Window width, px")->check(CLI::Range(64, 16384));
   app.add_option("--height", o.height, "Window height, px")->check(CLI::Range(64, 16384));

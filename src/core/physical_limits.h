@@ -61,6 +61,8 @@ inline constexpr Limit kStepFraction{
     1e-6, 1, "", "the adaptive step's floor is at least a millionth of its cap"};
 inline constexpr Limit kGrowthTolerance{0, 1e3, "", "a force may grow at most a thousand-fold"};
 inline constexpr Limit kPeriod{1e-3, 1e6, "s", "a gust lasts between 1 ms and 1e6 s"};
+// --size N: a cloth resized to N x N nodes (resized_grid).
+inline constexpr Limit kGridSize{2, 1024, "", "nodes a side: at most a million nodes"};
 // Loops whose length a file sets.
 inline constexpr Limit kStrainIterations{1, 1000, "",
                                          "each sweep costs a pass over the springs every step"};

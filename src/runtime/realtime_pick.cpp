@@ -4,7 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
+#include <stdexcept>
+
+#include "tradeoff/accuracy_choice.h"
+#include "tradeoff/trade_csv.h"
 
 namespace neurocloth {
 
@@ -31,9 +36,89 @@ std::string format(const char* pattern, double value) {
   return line;
 }
 
+// The trade's row for projective at kRealtimeStep and `iterations` that finished
+// its run, if any.
+const TradeRow* measured_row(const SizedTrade& trade, int iterations) {
+  if (!trade.table) return nullptr;
+  for (const TradeRow& row : trade.table->rows)
+    if (row.method == to_string(IntegratorKind::projective) && row.parameter == "dt" &&
+        std::abs(row.dt - kRealtimeStep) <= 1e-9 * kRealtimeStep && row.iterations == iterations &&
+        row.ok())
+      return &row;
+  return nullptr;
+}
+
+// Of the counts up to `most` (all fit the budget), the measured one of least
+// error; `most` when none is measured. Errors that differ by no more than the
+// reference's resolution cannot be told apart: the more iterations win then.
+int least_measured_error(const SizedTrade& trade, int most) {
+  int best = most;
+  const TradeRow* best_row = nullptr;
+  const double tie = trade.table ? reference_resolution(*trade.table) : 0;
+  for (int it = most; it >= 1; --it)
+    if (const TradeRow* row = measured_row(trade, it);
+        row && (!best_row || row->position_error_max < best_row->position_error_max - tie)) {
+      best = it;
+      best_row = row;
+    }
+  return best;
+}
+
+// What the note says of the picked setting's error at this size.
+std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, int size) {
+  if (trade.path.empty()) return "";  // nobody looked for one
+  const std::string grid = std::to_string(size) + " x " + std::to_string(size);
+  if (pick.measured) {
+    const TradeRow& row = *pick.measured;
+    char s[512];
+    std::snprintf(s, sizeof s,
+                  " Measured at %s: projective %d it., dt 1/60 s: max position error %.2g%% of "
+                  "the cloth's size over its first %g s (rms %.2g%%; the reference is good to "
+                  "%.2g%%), in %s.",
+                  grid.c_str(), row.iterations, 100 * row.position_error_max, trade.table->seconds,
+                  100 * row.position_error_rms, 100 * reference_resolution(*trade.table),
+                  pick.measured_in.c_str());
+    return s;
+  }
+  std::string says = " Its error at " + grid + " is not measured";
+  if (!trade.problem.empty()) says += " (" + trade.problem + ")";
+  if (!trade.measure.empty()) says += "; to measure it: " + trade.measure;
+  return says + ".";
+}
+
 }  // namespace
 
-RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost) {
+SizedTrade find_sized_trade(const std::string& scene_path, int n, const std::string& path) {
+  SizedTrade trade;
+  trade.size = n;
+  trade.path = path;
+  std::string iterations;
+  for (int it = 1; it <= kDefaultProjectiveIterations; ++it)
+    iterations += (it > 1 ? "," : "") + std::to_string(it);
+  const std::string out = path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0
+                              ? path.substr(0, path.size() - 4)
+                              : path;
+  // The window's settings exactly, against a reference the user can afford
+  // (docs/tradeoff.md, "Sized trades": what it cost at 64 and 128).
+  trade.measure = "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
+                  " --seconds 1 --samples 4 --methods projective --dt 1/60 " +
+                  "--projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
+  std::error_code missing;
+  if (!std::filesystem::exists(path, missing)) return trade;
+  try {
+    trade.table = read_sized_trade(path, n);
+  } catch (const std::runtime_error& e) {  // InputError: broken, or measured at another size
+    trade.problem = e.what();
+  }
+  return trade;
+}
+
+SizedTrade find_sized_trade(const std::string& scene_path, int n) {
+  return find_sized_trade(scene_path, n, sized_trade_path(scene_path, n));
+}
+
+RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
+                                const SizedTrade& trade) {
   RealtimePick pick;
   pick.own = pick.picked = scene.solver;
   pick.own_cost = pick.picked_cost = cost(scene);
@@ -50,6 +135,11 @@ RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost) {
       iterations = it;
       break;
     }
+  iterations = least_measured_error(trade, iterations);
+  if (const TradeRow* row = measured_row(trade, iterations)) {
+    pick.measured = *row;
+    pick.measured_in = trade.path;
+  }
   pick.switched = true;
   pick.picked = projective(scene.solver, iterations);
   pick.picked_cost = one + (iterations - 1) * per_iteration;
@@ -62,8 +152,8 @@ RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost) {
     note += format("; even this runs only %.2gx", 1 / pick.picked_cost);
   else if (pick.picked_cost > kRealtimeBudget)
     note += format("; this runs %.2gx, with little to spare", 1 / pick.picked_cost);
-  note += ". Fewer iterations are more damped (docs/tradeoff.md).";
-  pick.note = note;
+  note += ".";
+  pick.note = note + error_sentence(pick, trade, scene.grid ? scene.grid->rows : trade.size);
   return pick;
 }
 

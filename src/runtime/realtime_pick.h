@@ -7,11 +7,29 @@
 // accuracy knob) as the machine can afford, and says so; the Solver panel
 // offers the scene's own solver back.
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "scene.h"
+#include "tradeoff/trade_table.h"
 
 namespace neurocloth {
+
+// What is measured of the picked settings' error at a resized cloth's size: a
+// trade measured at the scene's own size says nothing of a finer cloth's.
+struct SizedTrade {
+  int size = 0;                     // N: the cloth is N x N
+  std::string path;                 // where the trade at this size lives (sized_trade_path)
+  std::optional<TradeTable> table;  // read from it, its size checked; none: not measured
+  std::string problem;              // why a file that is there could not be used
+  std::string measure;              // the command that measures it
+};
+
+// The trade of `scene_path` resized to n x n, read from `path` when the file
+// is there. Never throws: a broken file, or one measured at another size, is
+// reported in `problem` (the window opens without the quote).
+SizedTrade find_sized_trade(const std::string& scene_path, int n, const std::string& path);
+SizedTrade find_sized_trade(const std::string& scene_path, int n);  // at sized_trade_path
 
 struct RealtimePick {
   bool switched = false;  // false: the scene's own solver keeps up (or nothing was asked)
@@ -19,7 +37,11 @@ struct RealtimePick {
   SolverSettings picked;  // what runs (own when not switched)
   double own_cost = 0;    // wall seconds per simulated second, measured on this machine
   double picked_cost = 0;
-  std::string note;  // one line for the Solver panel and the terminal
+  // The picked setting's row of the sized trade (projective, kRealtimeStep, its
+  // iterations), when it was measured at this size; and the file it is from.
+  std::optional<TradeRow> measured;
+  std::string measured_in;
+  std::string note;  // for the Solver panel and the terminal
 };
 
 // Wall seconds per simulated second of `scene` under its solver (a probe).
@@ -34,8 +56,13 @@ inline constexpr double kRealtimeBudget = 0.7;
 // Keeps the scene's solver when `cost` says it keeps up; else the projective
 // step at kRealtimeStep with the most iterations (1..kDefaultProjectiveIterations)
 // whose cost, interpolated linearly from probes at 1 and 4 iterations, fits the
-// budget; else 1 iteration, saying that even it does not keep up.
-RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost);
+// budget; else 1 iteration, saying that even it does not keep up. When `trade`
+// holds measured errors for counts that fit, the one of least error among them
+// is taken instead (a quoted error beats an unmeasured guess), and the note
+// quotes it; otherwise the note says the error is not measured and how to
+// (nothing, when `trade` names no file: nobody looked).
+RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
+                                const SizedTrade& trade = {});
 
 // Runs a copy of `scene` for about `wall_seconds` (at most `max_sim_seconds`
 // simulated) after one untimed step (a factorisation, a first contact) and

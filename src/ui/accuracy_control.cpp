@@ -12,15 +12,22 @@
 
 namespace neurocloth {
 
-AccuracyTrade load_accuracy_trade(const std::string& scene_path) {
+AccuracyTrade load_accuracy_trade(const std::string& scene_path, int resized_to) {
   AccuracyTrade t;
-  t.path = committed_trade_path(scene_path);
+  t.path =
+      resized_to > 0 ? sized_trade_path(scene_path, resized_to) : committed_trade_path(scene_path);
   if (!std::filesystem::exists(t.path)) {
-    t.note = "no measured trade for this scene (neurocloth-cli tradeoff writes " + t.path + ")";
+    const std::string n = std::to_string(resized_to);
+    t.note =
+        resized_to > 0
+            ? "no trade measured at " + n + " x " + n + " (neurocloth-cli tradeoff --size " + n +
+                  " writes " + t.path + ")"
+            : "no measured trade for this scene (neurocloth-cli tradeoff writes " + t.path + ")";
     return t;
   }
   try {
-    TradeTable table = read_trade_csv(t.path);
+    TradeTable table =
+        resized_to > 0 ? read_sized_trade(t.path, resized_to) : read_trade_csv(t.path);
     const auto best = most_accurate(table.rows);
     if (!best) {
       t.note = t.path + ": no setting finished ok";

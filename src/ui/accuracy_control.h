@@ -23,7 +23,9 @@ struct AccuracyTrade {
 };
 
 // Never throws: a missing or broken trade leaves `table` empty and says why.
-AccuracyTrade load_accuracy_trade(const std::string& scene_path);
+// For a cloth resized to n x n (`resized_to` = n), the trade measured at that
+// size (sized_trade_path), never the scene's own: its errors are another cloth's.
+AccuracyTrade load_accuracy_trade(const std::string& scene_path, int resized_to = 0);
 
 struct AccuracyPick {
   SetSolver command;

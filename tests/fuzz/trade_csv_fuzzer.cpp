@@ -25,6 +25,10 @@ void check_trade(const Contract& c, const TradeTable& t) {
   c.finite(t.seconds, "# seconds");
   c.require(t.seconds > 0, "# seconds accepted <= 0");
   c.require(t.samples >= 1, "# samples accepted < 1");
+  // A trade is quoted only at its grid (read_sized_trade): none, or a real one.
+  c.require(
+      (t.grid_rows == 0 && t.grid_cols == 0) || (t.grid_rows >= 2 && t.grid_cols >= 2),
+      "# grid accepted as " + std::to_string(t.grid_rows) + "x" + std::to_string(t.grid_cols));
   c.finite(t.cloth_size, "# cloth_size_m");
   c.finite(t.energy_scale, "# energy_scale_j");
   c.finite(t.wall_seconds, "# wall_seconds");

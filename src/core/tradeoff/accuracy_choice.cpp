@@ -58,4 +58,9 @@ std::string committed_trade_path(const std::string& scene_path) {
          ".csv";
 }
 
+std::string sized_trade_path(const std::string& scene_path, int n) {
+  return assets_directory() + "/tradeoff/" + std::filesystem::path(scene_path).stem().string() +
+         "." + std::to_string(n) + ".csv";
+}
+
 }  // namespace neurocloth

@@ -35,5 +35,9 @@ AccuracyChoice choose_for_accuracy(const TradeTable& trade, const std::string& t
 // Where a shipped scene's committed trade lives: assets/tradeoff/<scene file stem>.csv
 // (whether or not it exists).
 std::string committed_trade_path(const std::string& scene_path);
+// Where the trade of a shipped scene resized to n x n (resized_grid) lives:
+// assets/tradeoff/<scene file stem>.<n>.csv. A trade holds at the resolution it
+// was measured at only; read it with read_sized_trade (trade_csv.h).
+std::string sized_trade_path(const std::string& scene_path, int n);
 
 }  // namespace neurocloth

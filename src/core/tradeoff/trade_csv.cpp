@@ -118,6 +118,7 @@ std::string trade_csv(const TradeTable& t) {
   s << "# scene_file: " << one_line(t.scene_file) << "\n";
   s << "# seconds: " << number(t.seconds, 17) << "\n";
   s << "# samples: " << t.samples << "\n";
+  if (t.grid_rows > 0) s << "# grid: " << t.grid_rows << "x" << t.grid_cols << "\n";
   s << "# cloth_size_m: " << number(t.cloth_size, 6) << "\n";
   s << "# energy_scale_j: " << number(t.energy_scale, 6) << "\n";
   s << "# reference_dt: " << number(r.dt, 17) << "\n";
@@ -219,6 +220,8 @@ class TradeCsvParser {
       t.samples = static_cast<int>(in_.count(v, field, line_, 1000));  // as tradeoff --samples
       if (t.samples < 1) in_.fail(field, "must be >= 1", line_, v.column);
       have_.samples = true;
+    } else if (key == "grid") {
+      grid(v, field);
     } else if (key == "cloth_size_m") {
       t.cloth_size = in_.real(v, field, line_, 0, true);
     } else if (key == "energy_scale_j") {
@@ -258,6 +261,20 @@ class TradeCsvParser {
     } else if (key == "wall_seconds") {
       t.wall_seconds = in_.real(v, field, line_, 0, false);
     }
+  }
+
+  // "ROWSxCOLS", each a whole number >= 2 (a grid has at least two nodes a side).
+  void grid(const Field& v, const std::string& field) {
+    const std::size_t x = v.text.find('x');
+    if (x == std::string::npos)
+      in_.fail(field, "must be ROWSxCOLS (e.g. 128x128), got '" + v.text + "'", line_, v.column);
+    const Field rows{v.text.substr(0, x), v.column};
+    const Field cols{v.text.substr(x + 1), v.column + static_cast<int>(x) + 1};
+    const long most = std::numeric_limits<int>::max();
+    table_.grid_rows = static_cast<int>(in_.count(rows, field, line_, most));
+    table_.grid_cols = static_cast<int>(in_.count(cols, field, line_, most));
+    if (table_.grid_rows < 2 || table_.grid_cols < 2)
+      in_.fail(field, "a grid has at least 2 nodes a side, got '" + v.text + "'", line_, v.column);
   }
 
   // The columns must come in kTradeColumns' order; only the optional one may be missing.
@@ -397,6 +414,20 @@ TradeTable parse_trade_csv(const std::string& text, const std::string& path) {
 
 TradeTable read_trade_csv(const std::string& path) {
   return parse_trade_csv(read_text_file(path, "trade file", kMaxTableBytes), path);
+}
+
+TradeTable read_sized_trade(const std::string& path, int n) {
+  TradeTable t = read_trade_csv(path);
+  const std::string asked = std::to_string(n) + " x " + std::to_string(n);
+  if (t.grid_rows == 0)
+    throw InputError(
+        path, "# grid",
+        "missing: the file does not say what grid it was measured on (asked for " + asked + ")");
+  if (t.grid_rows != n || t.grid_cols != n)
+    throw InputError(path, "# grid",
+                     "measured on a " + std::to_string(t.grid_rows) + " x " +
+                         std::to_string(t.grid_cols) + " grid, not " + asked);
+  return t;
 }
 
 }  // namespace neurocloth

@@ -33,6 +33,7 @@ inline constexpr const char* kTradeMetadataKeys[] = {"scene",
                                                      "scene_file",
                                                      "seconds",
                                                      "samples",
+                                                     "grid",
                                                      "cloth_size_m",
                                                      "energy_scale_j",
                                                      "reference_dt",
@@ -53,5 +54,9 @@ std::string trade_csv(const TradeTable& table);
 // returns a half-read table.
 TradeTable parse_trade_csv(const std::string& text, const std::string& path);
 TradeTable read_trade_csv(const std::string& path);
+// The same, for a cloth of n x n nodes: also throws InputError naming `path` and
+// the field '# grid' when the file does not say it was measured at n x n (a
+// trade at 32 x 32 says nothing of the error at 128 x 128).
+TradeTable read_sized_trade(const std::string& path, int n);
 
 }  // namespace neurocloth

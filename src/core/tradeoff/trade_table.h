@@ -40,10 +40,13 @@ struct TradeRow {
 };
 
 struct TradeTable {
-  std::string scene;        // the scene's name
-  std::string scene_file;   // as given to the command
-  double seconds = 0;       // simulated per run
-  int samples = 0;          // compared at this many evenly spaced times
+  std::string scene;       // the scene's name
+  std::string scene_file;  // as given to the command
+  double seconds = 0;      // simulated per run
+  int samples = 0;         // compared at this many evenly spaced times
+  // The grid the cloth was measured on (0: not a grid scene, or a file that does
+  // not say): a trade holds for that resolution only (sized_trade.h).
+  int grid_rows = 0, grid_cols = 0;
   double cloth_size = 0;    // m
   double energy_scale = 0;  // J
   ReferenceReport reference;

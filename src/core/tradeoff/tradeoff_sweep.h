@@ -29,13 +29,20 @@ struct TradeoffPlan {
   // Projective's second knob: its sweep runs each of these iterations counts at
   // every step it tries (docs/tradeoff.md says why these). Each in [1, 1000].
   std::vector<int> projective_iterations = {1, 2, 4, 10, 30};
+  // When not empty, every fixed-step method (projective too, at each of its
+  // iterations counts) runs exactly these steps instead of its halving sweep,
+  // with no stopping rule: to measure the settings something else will run (the
+  // window's real-time pick, realtime_pick.h). Each must divide the sample
+  // interval seconds / samples into whole steps. RK4 and adaptive are unchanged.
+  std::vector<double> steps;
   // The methods to sweep (integrator names and/or "adaptive"); empty: all six.
   // RK4's line always comes from the reference's own runs.
   std::vector<std::string> methods;
 };
 
 // Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
-// an unknown method, projective with no iterations count or one out of range), std::runtime_error
+// an unknown method, projective with no iterations count or one out of range, a
+// step out of range or not dividing the sample interval), std::runtime_error
 // when even the reference diverges.
 TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
                             const TradeoffPlan& plan,
@@ -45,5 +52,10 @@ TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
 // interval / 2^k at or below twice the explicit stability bound (so the first
 // setting may sit just past it), or interval / 4 for the implicit step.
 double first_step(const Scene& scene, IntegratorKind kind, double interval);
+
+// Why `dt` cannot be one of a plan's steps for sample interval `interval`
+// (out of the step limits, or not a whole number of steps per interval), or
+// empty when it can.
+std::string step_refusal(double dt, double interval);
 
 }  // namespace neurocloth
