@@ -94,6 +94,14 @@ nlohmann::json accuracy_json(const AccuracyPick& p) {
 
 }  // namespace
 
+SpringPrecision precision_option(const std::string& name) {
+  const auto precision = parse_precision(name);
+  if (!precision)
+    throw InputError("command line", "--precision",
+                     "unknown precision '" + name + "' (expected one of: " + kPrecisionNames + ")");
+  return *precision;
+}
+
 int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
     throw InputError("command line", "--seconds", "must be a finite number >= 0");
@@ -130,6 +138,11 @@ int run_simulate(const SimulateOptions& o) {
                      "must be in [1, " + std::to_string(kMaxStepThreads) + "]");
   scene.solver.threads =
       o.threads ? *o.threads : batch_step_threads(scene.topology.rest_positions.size());
+  if (o.precision) scene.solver.precision = precision_option(*o.precision);
+  const std::string conflict = precision_conflict(scene.solver.integrator, scene.solver.precision);
+  if (!conflict.empty())
+    throw InputError("command line", o.precision ? "--precision" : "--integrator",
+                     "solver.precision " + conflict);
 
   if (!(o.progress >= 0) || !std::isfinite(o.progress))
     throw InputError("command line", "--progress", "must be a finite number >= 0 (wall seconds)");
