@@ -248,9 +248,8 @@ std::vector<Vec3> hanging_after(SpringPrecision precision) {
 // off by 8 epsilon. A stable cloth settles where such perturbed springs put
 // it: along a chain of springs the offsets add up to at most 8 epsilon of the
 // chain's length, below the cloth's size. A further factor 8 allows for the
-// swing's phase; a float path that dropped a Newton step (1e-5 per force) or
-// rounded positions rather than their differences to float (1e-7 m of a 1 m
-// coordinate per step) lands further off.
+// swing's phase; a float path that dropped its Newton step (6e-5 per force)
+// lands further off.
 TEST(Simulation, FloatSpringsStayWithinFloatRoundOffOfDouble) {
   const std::vector<Vec3> in_double = hanging_after(SpringPrecision::float64);
   const std::vector<Vec3> in_float = hanging_after(SpringPrecision::float32);

@@ -92,7 +92,7 @@ using namespace spring_chunks;
 template <SpringFunctionKind K, bool Direct, typename T>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
-#if defined(__AVX512F__)
+#if defined(NEUROCLOTH_HAND_VECTORISED)
   if constexpr (kHandVectorised) {
     propagate_chunk_avx512<K, Direct, T>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
     return;
@@ -177,7 +177,7 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     }
     const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
     if (!touches) return;
-#if defined(__AVX512F__)
+#if defined(NEUROCLOTH_HAND_VECTORISED)
     // A row's neighbours inside this part: summed in registers (same bits).
     const std::int32_t o = b - a;
     if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {

@@ -11,7 +11,8 @@
 // operations whatever its place in a chunk or a thread's part. The bits
 // differ from the portable loop's in the last place (tested against it in
 // spring_chunk_test.cpp). Internal to the core.
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#define NEUROCLOTH_HAND_VECTORISED 1
 #include <immintrin.h>
 
 #include <cstdint>
@@ -103,115 +104,79 @@ struct Forces8 {
   }
 };
 
-// Forces8's arithmetic in float (SpringPrecision::float32), 16 springs a
-// vector, served to the 8-lane loops below half a vector at a time: the
-// differences of the ends' positions and velocities are taken in double and
-// rounded, everything after in float, and the outputs widened back to double
-// for the node sums. vrsqrt14ps is within 2^-14, so one Newton step reaches
-// float's round-off. Calls must come at k = 0, 8, 16, ... in order (an even
-// block evaluates 16 springs, the odd one after it returns the upper half).
+// Forces8's arithmetic in float (SpringPrecision::float32): the differences
+// of the ends' positions and velocities are taken in double and rounded,
+// everything after is float, and the outputs are widened back to double for
+// the node sums. Eight springs a step in 256-bit registers rather than 16 in
+// 512-bit ones: the loads and the node sums are double either way, and 16
+// lanes cost a join of two halves per input and a split per output, which
+// measured slower than the double kernel (docs/network.md, "Float springs").
+// vrsqrt14ps is within 2^-14, so one Newton step reaches float's round-off.
 template <SpringFunctionKind K>
-class FloatForces8 {
- public:
-  FloatForces8(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
+struct FloatForces8 {
+  const double* px;
+  const double* py;
+  const double* pz;
+  const double* vx;
+  const double* vy;
+  const double* vz;
+  const double* rest;
+  const double* b1;
+  const double* b2;
+  std::int32_t offset;
+  __m256 threshold, extra, min_len2;
+
+  FloatForces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
                std::int32_t b, const ClothState& s, double min_length)
-      : px_(s.x.data() + a),
-        py_(s.y.data() + a),
-        pz_(s.z.data() + a),
-        vx_(s.vx.data() + a),
-        vy_(s.vy.data() + a),
-        vz_(s.vz.data() + a),
-        rest_(L.rest_length.data() + first),
-        b1_(L.stiffness.data() + first),
-        b2_(L.damping.data() + first),
-        offset_(b - a),
-        count_(count),
-        threshold_(_mm512_set1_ps(static_cast<float>(L.function.strain_threshold))),
-        extra_(_mm512_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
-        min_len2_(_mm512_set1_ps(static_cast<float>(min_length * min_length))) {}
+      : px(s.x.data() + a),
+        py(s.y.data() + a),
+        pz(s.z.data() + a),
+        vx(s.vx.data() + a),
+        vy(s.vy.data() + a),
+        vz(s.vz.data() + a),
+        rest(L.rest_length.data() + first),
+        b1(L.stiffness.data() + first),
+        b2(L.damping.data() + first),
+        offset(b - a),
+        threshold(_mm256_set1_ps(static_cast<float>(L.function.strain_threshold))),
+        extra(_mm256_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
+        min_len2(_mm256_set1_ps(static_cast<float>(min_length * min_length))) {}
 
-  void operator()(std::int32_t k, __mmask8, __m512d& gx, __m512d& gy, __m512d& gz) {
-    if ((k & 15) == 0) evaluate16(k);
-    const int half = (k & 15) == 0 ? 0 : 1;
-    gx = g_[half][0];
-    gy = g_[half][1];
-    gz = g_[half][2];
-  }
-
- private:
-  // Two rows of 8 doubles as one vector of 16 floats.
-  static __m512 join(__m512d lo, __m512d hi) {
-    const __m512d both = _mm512_maskz_insertf64x4(
-        0xFF,
-        _mm512_maskz_insertf64x4(0xFF, _mm512_setzero_pd(),
-                                 _mm256_castps_pd(_mm512_maskz_cvtpd_ps(0xFF, lo)), 0),
-        _mm256_castps_pd(_mm512_maskz_cvtpd_ps(0xFF, hi)), 1);
-    return _mm512_castpd_ps(both);
-  }
-  template <int Half>
-  static __m512d widened(__m512 v) {
-    return _mm512_maskz_cvtps_pd(
-        0xFF, _mm256_castpd_ps(_mm512_maskz_extractf64x4_pd(0xF, _mm512_castps_pd(v), Half)));
-  }
-
-  void evaluate16(std::int32_t k) {
-    const std::int32_t n = count_ - k;
-    const __mmask8 lo = first_lanes(n), hi = first_lanes(n > 8 ? n - 8 : 0);
+  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
     // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
-    const auto at = [k](const double* p, __mmask8 m, std::int32_t j) {
-      return _mm512_maskz_loadu_pd(m, p + k + j);
-    };
-    const auto load = [&](const double* p) { return join(at(p, lo, 0), at(p, hi, 8)); };
-    const std::int32_t o = offset_;
-    const auto diff = [&](const double* p) {
-      return join(_mm512_sub_pd(at(p + o, lo, 0), at(p, lo, 0)),
-                  _mm512_sub_pd(at(p + o, hi, 8), at(p, hi, 8)));
-    };
-    const __m512 one = _mm512_set1_ps(1.0f);
-    const __m512 dx = diff(px_), dy = diff(py_), dz = diff(pz_);
-    const __m512 len2 = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
-                                      _mm512_mul_ps(dz, dz));
-    const __mmask16 has_direction = _mm512_cmp_ps_mask(len2, min_len2_, _CMP_GT_OQ);
-    const __m512 safe_len2 = _mm512_mask_blend_ps(has_direction, one, len2);
-    const __m512 y = _mm512_maskz_rsqrt14_ps(0xFFFF, safe_len2);
-    const __m512 inv_len = _mm512_mul_ps(
-        y, _mm512_sub_ps(
-               _mm512_set1_ps(1.5f),
-               _mm512_mul_ps(_mm512_mul_ps(_mm512_set1_ps(0.5f), safe_len2), _mm512_mul_ps(y, y))));
-    const __m512 len = _mm512_mul_ps(safe_len2, inv_len);
-    const __m512 r = load(rest_);
-    __m512 e = _mm512_sub_ps(len, r);
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    const auto narrow = [](__m512d v) { return _mm512_maskz_cvtpd_ps(0xFF, v); };
+    const auto diff = [&](const double* p) { return narrow(_mm512_sub_pd(at(p + offset), at(p))); };
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 dx = diff(px), dy = diff(py), dz = diff(pz);
+    const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                      _mm256_mul_ps(dz, dz));
+    const __mmask8 has_direction = _mm256_cmp_ps_mask(len2, min_len2, _CMP_GT_OQ);
+    const __m256 safe_len2 = _mm256_mask_blend_ps(has_direction, one, len2);
+    const __m256 y = _mm256_maskz_rsqrt14_ps(0xFF, safe_len2);
+    const __m256 inv_len = _mm256_mul_ps(
+        y, _mm256_sub_ps(
+               _mm256_set1_ps(1.5f),
+               _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), safe_len2), _mm256_mul_ps(y, y))));
+    const __m256 len = _mm256_mul_ps(safe_len2, inv_len);
+    const __m256 r = narrow(at(rest));
+    __m256 e = _mm256_sub_ps(len, r);
     if constexpr (K == SpringFunctionKind::stiffening) {
-      const __m512 beyond = _mm512_maskz_max_ps(0xFFFF, _mm512_setzero_ps(),
-                                                _mm512_sub_ps(e, _mm512_mul_ps(threshold_, r)));
-      e = _mm512_add_ps(e, _mm512_mul_ps(extra_, beyond));
+      const __m256 beyond = _mm256_maskz_max_ps(0xFF, _mm256_setzero_ps(),
+                                                _mm256_sub_ps(e, _mm256_mul_ps(threshold, r)));
+      e = _mm256_add_ps(e, _mm256_mul_ps(extra, beyond));
     }
-    const __m512 rel =
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(diff(vx_), dx), _mm512_mul_ps(diff(vy_), dy)),
-                      _mm512_mul_ps(diff(vz_), dz));
-    const __m512 magnitude = _mm512_add_ps(_mm512_mul_ps(load(b1_), e),
-                                           _mm512_mul_ps(load(b2_), _mm512_mul_ps(rel, inv_len)));
-    const __m512 scale = _mm512_maskz_mul_ps(has_direction, magnitude, inv_len);
-    const __m512 g[3] = {_mm512_mul_ps(scale, dx), _mm512_mul_ps(scale, dy),
-                         _mm512_mul_ps(scale, dz)};
-    for (int c = 0; c < 3; ++c) {
-      g_[0][c] = widened<0>(g[c]);
-      g_[1][c] = widened<1>(g[c]);
-    }
+    const __m256 rel =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(diff(vx), dx), _mm256_mul_ps(diff(vy), dy)),
+                      _mm256_mul_ps(diff(vz), dz));
+    const __m256 magnitude =
+        _mm256_add_ps(_mm256_mul_ps(narrow(at(b1)), e),
+                      _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
+    const __m256 scale = _mm256_maskz_mul_ps(has_direction, magnitude, inv_len);
+    gx = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
+    gy = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
+    gz = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dz));
   }
-
-  const double* px_;
-  const double* py_;
-  const double* pz_;
-  const double* vx_;
-  const double* vy_;
-  const double* vz_;
-  const double* rest_;
-  const double* b1_;
-  const double* b2_;
-  std::int32_t offset_, count_;
-  __m512 threshold_, extra_, min_len2_;
-  __m512d g_[2][3];  // the last 16 springs' outputs: lower and upper 8
 };
 
 // The force neurons of a chunk in `T`'s arithmetic.
@@ -224,7 +189,7 @@ template <SpringFunctionKind K, bool Direct, typename T>
 void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
                             std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
                             double* fx, double* fy, double* fz) {
-  Forces<K, T> forces(L, first, count, a, b, s, min_length);
+  const Forces<K, T> forces(L, first, count, a, b, s, min_length);
   const std::int32_t offset = b - a;
   for (std::int32_t k = 0; k < count; k += 8) {
     const __mmask8 m = first_lanes(count - k);
@@ -255,7 +220,7 @@ void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t
                           std::int32_t a, const ClothState& s, double min_length, double* fx,
                           double* fy, double* fz) {
   static_assert(O > 0 && O < 8, "a shift within one vector");
-  Forces<K, T> forces(L, first, count, a, a + O, s, min_length);
+  const Forces<K, T> forces(L, first, count, a, a + O, s, min_length);
   __m512d px = _mm512_setzero_pd(), py = px, pz = px;
   const auto shifted = [](__m512d now, __m512d before) {
     return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),
