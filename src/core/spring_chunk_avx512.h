@@ -11,6 +11,10 @@
 // operations whatever its place in a chunk or a thread's part. The bits
 // differ from the portable loop's in the last place (tested against it in
 // spring_chunk_test.cpp). Internal to the core.
+//
+// FloatForces8 is the same in float (SpringPrecision::float32). Both need
+// AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512
+// masks): every AVX-512 CPU since Skylake-X has both.
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #define NEUROCLOTH_HAND_VECTORISED 1
 #include <immintrin.h>
