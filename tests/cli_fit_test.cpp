@@ -194,6 +194,12 @@ TEST_F(CliFit, WhatFitCannotChangeIsRefusedByName) {
       write("rk4.json", with(read_text(scene_asset("chain")), "\"integrator\": \"network\"",
                              "\"integrator\": \"rk4\""));
   expect_input_error({"fit", rk4, "--reference", ref, "--out", fitted()}, {"rk4", "adjoint"});
+  // Learning differentiates the double step: a float scene is refused, naming the field.
+  const std::string in_float =
+      write("float.json", with(read_text(scene_asset("chain")), "\"integrator\": \"network\"",
+                               "\"integrator\": \"network\", \"precision\": \"float\""));
+  expect_input_error({"fit", in_float, "--reference", ref, "--out", fitted()},
+                     {"solver.precision", "adjoint"});
 }
 
 // A reference only a value beyond the scene's limits would explain (the

@@ -92,6 +92,20 @@ TEST_F(Cli, OptionsOverrideTheScene) {
   EXPECT_EQ(doc.at("steps").get<long>(), 5);
 }
 
+TEST_F(Cli, PrecisionOverridesTheSceneAndIsRefusedByNameWhereItCannotGo) {
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--precision",
+                         "float", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_EQ(read_result().at("precision"), "float");
+  fs::remove(result_path());
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--precision",
+                      "half", "--out", result_path()},
+                     {"--precision", "half", "double, float"});
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--precision",
+                      "float", "--integrator", "implicit_euler", "--out", result_path()},
+                     {"--precision", "implicit_euler"});
+}
+
 TEST_F(Cli, AdaptiveRunIsMarkedAdaptive) {
   const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.02", "--adaptive",
                          "--out", result_path()});

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "grid_builder.h"
+#include "step_threads.h"
 #include "test_support.h"
 
 namespace neurocloth {
@@ -188,6 +189,89 @@ TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
       EXPECT_LT((got - want).norm(), 1e-14 * scale) << "spring " << k << ", " << to_string(kind);
     }
   }
+}
+
+// float's unit round-off is 2^-24; its epsilon 2^-23.
+constexpr double kFloatEpsilon = 1.1920928955078125e-7;
+
+// The float path (SpringPrecision::float32) against the textbook force in
+// double, on the cloth of the test above (part-filled vectors: rows of 7 and
+// 6 springs leave 16-lane float vectors masked, as chunk tails do), linear and
+// stiffening, with one spring of zero length. Each input is rounded to float
+// once (|d|, |dv| within 2^-24 relative), len and 1/len carry a few ulp, so
+// every term of the force is off by a few float ulp of its own size: 8
+// epsilon of the same scale as above. One Newton step fewer on vrsqrt14ps
+// (2^-14) or the portable seed's (5e-6 after two) fails it.
+TEST(ClothNetwork, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
+  for (const SpringFunctionKind kind :
+       {SpringFunctionKind::linear, SpringFunctionKind::stiffening}) {
+    Scene scene = test::asset_scene("free_cloth");
+    ClothNetwork net = scene.build_network();
+    net.springs.function = {kind, 0.05, 10.0};
+    ClothState s = shaken(scene, 11);
+    const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
+    s.set_position(b0, s.position(a0));  // spring 3 has no direction: no force
+    SpringActivations act;
+    net.spring_outputs(s, act, SpringPrecision::float32);
+    int springs_with_direction = 0;
+    for (std::size_t k = 0; k < net.spring_count(); ++k) {
+      const int a = net.springs.node_a[k], b = net.springs.node_b[k];
+      const Vec3 d = s.position(b) - s.position(a);
+      const double len = std::sqrt(d.squaredNorm());
+      const Vec3 got(act.fx[k], act.fy[k], act.fz[k]);
+      if (len <= kMinSpringLength) {
+        EXPECT_EQ(got, Vec3::Zero()) << k;
+        continue;
+      }
+      ++springs_with_direction;
+      const double rest = net.springs.rest_length[k];
+      const double b1 = net.springs.stiffness[k], b2 = net.springs.damping[k];
+      const Vec3 dv = s.velocity(b) - s.velocity(a);
+      const double magnitude =
+          b1 * net.springs.function.force(len - rest, rest) + b2 * dv.dot(d) / len;
+      const Vec3 want = magnitude / len * d;
+      const double scale = b1 * net.springs.function.max_slope() * len + b2 * dv.norm();
+      EXPECT_LT((got - want).norm(), 8 * kFloatEpsilon * scale)
+          << "spring " << k << ", " << to_string(kind);
+    }
+    EXPECT_EQ(springs_with_direction, static_cast<int>(net.spring_count()) - 1);
+  }
+}
+
+// The step's own sweep in float (direct chunks, rows summed in registers,
+// chunks through accumulate_chunk, on one thread and split over two) against
+// double, node by node: each node's sum is off by at most its springs' float
+// round-off (the test above), and the split gives the same bits as one thread.
+TEST(ClothNetwork, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAnyThreads) {
+  // Large enough that two threads split the sweep (kMinThreadedNodes).
+  Scene scene = resized_grid(test::asset_scene("hanging"), 72);
+  const ClothNetwork net = scene.build_network();
+  const ClothState s = shaken(scene, 5);
+  NodeVectors in_double(s.size()), in_float(s.size()), split(s.size());
+  net.net_forces(s, in_double);
+  ForceInputs inputs;
+  inputs.precision = SpringPrecision::float32;
+  net.net_forces(s, inputs, in_float);
+  std::vector<double> bound(s.size(), 0.0);
+  for (std::size_t k = 0; k < net.spring_count(); ++k) {
+    const int a = net.springs.node_a[k], b = net.springs.node_b[k];
+    const Vec3 d = s.position(b) - s.position(a);
+    const double scale = net.springs.stiffness[k] * net.springs.function.max_slope() * d.norm() +
+                         net.springs.damping[k] * (s.velocity(b) - s.velocity(a)).norm();
+    bound[a] += 8 * kFloatEpsilon * scale;
+    bound[b] += 8 * kFloatEpsilon * scale;
+  }
+  bool differs = false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    EXPECT_LE((in_float.at(i) - in_double.at(i)).norm(), bound[i]) << i;
+    differs = differs || in_float.at(i) != in_double.at(i);
+  }
+  EXPECT_TRUE(differs) << "the float path computed in double";
+  OwnedStepThreads two(2);
+  inputs.threads = two.get();
+  net.net_forces(s, inputs, split);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    EXPECT_EQ(split.at(i), in_float.at(i)) << i;
 }
 
 TEST(ClothNetwork, WeightsArePerSpringAndPerNodeAndWritable) {

@@ -332,6 +332,38 @@ TEST(SceneFields, UnknownIntegratorListsValidNames) {
     EXPECT_NE(what.find(name), std::string::npos) << name << " missing from: " << what;
 }
 
+TEST(SceneFields, PrecisionIsDoubleUnlessTheSceneSaysFloat) {
+  EXPECT_EQ(parse_scene(grid_scene().text(), scratch_path("p0.json")).solver.precision,
+            SpringPrecision::float64);
+  const Scene f =
+      parse_scene(grid_scene().set("/solver/precision", "float").text(), scratch_path("p1.json"));
+  EXPECT_EQ(f.solver.precision, SpringPrecision::float32);
+}
+
+TEST(SceneFields, UnknownPrecisionListsValidNames) {
+  const std::string path = scratch_path("precision.json");
+  const std::string text = grid_scene().set("/solver/precision", "half").text();
+  const auto e = parse_error(text, path);
+  ASSERT_TRUE(e);
+  expect_names(*e, path, "solver.precision", line_of(text, "\"precision\""));
+  const std::string what = e->what();
+  for (const char* name : {"half", "double", "float"})
+    EXPECT_NE(what.find(name), std::string::npos) << name << " missing from: " << what;
+}
+
+// The implicit integrators linearise the springs in double: float is refused there, by name.
+TEST(SceneFields, FloatPrecisionIsRefusedForTheImplicitIntegrators) {
+  for (const char* integrator : {"implicit_euler", "projective"}) {
+    const std::string path = scratch_path(std::string("precision_") + integrator + ".json");
+    const std::string text =
+        grid_scene().set("/solver/integrator", integrator).set("/solver/precision", "float").text();
+    const auto e = parse_error(text, path);
+    ASSERT_TRUE(e) << integrator;
+    expect_names(*e, path, "solver.precision", line_of(text, "\"precision\""));
+    EXPECT_NE(std::string(e->what()).find(integrator), std::string::npos) << e->what();
+  }
+}
+
 TEST(SceneFields, RowsAndColsMustBePositive) {
   expect_grid_error(grid_scene().set("/cloth/grid/rows", 0), "cloth.grid.rows", "\"rows\"");
   expect_grid_error(grid_scene().set("/cloth/grid/rows", -3), "cloth.grid.rows", "\"rows\"");

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <cmath>
 
@@ -226,6 +229,72 @@ namespace {
 
 // A moved simulation keeps stepping its own buffers (not the moved-from
 // object's): the same bits as one that never moved, mid-run and with modules.
+// The shipped hanging cloth 0.5 s (500 steps, from rest through its first
+// swing) under `precision`; its positions.
+std::vector<Vec3> hanging_after(SpringPrecision precision) {
+  Scene scene = test::asset_scene("hanging");
+  scene.solver.precision = precision;
+  Simulation sim = scene.make_simulation();
+  EXPECT_EQ(sim.advance(0.5), RunStatus::ok);
+  std::vector<Vec3> p;
+  for (std::size_t i = 0; i < sim.state().size(); ++i)
+    p.push_back(sim.state().position(i));
+  return p;
+}
+
+// Float springs (SolverSettings::precision) keep the double run's motion. Each
+// float force is its double value to a few float ulp (8 epsilon of the
+// spring's scale, cloth_network_test.cpp), i.e. the force of a rest length
+// off by 8 epsilon. A stable cloth settles where such perturbed springs put
+// it: along a chain of springs the offsets add up to at most 8 epsilon of the
+// chain's length, below the cloth's size. A further factor 8 allows for the
+// swing's phase; a float path that dropped its Newton step (6e-5 per force)
+// lands further off.
+TEST(Simulation, FloatSpringsStayWithinFloatRoundOffOfDouble) {
+  const std::vector<Vec3> in_double = hanging_after(SpringPrecision::float64);
+  const std::vector<Vec3> in_float = hanging_after(SpringPrecision::float32);
+  Vec3 lo = in_double[0], hi = in_double[0];
+  for (const Vec3& p : in_double) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double size = (hi - lo).norm();
+  const double epsilon = 1.1920928955078125e-7;  // float's, 2^-23
+  double worst = 0;
+  for (std::size_t i = 0; i < in_double.size(); ++i)
+    worst = std::max(worst, (in_float[i] - in_double[i]).norm());
+  EXPECT_LT(worst, 64 * epsilon * size);
+  EXPECT_GT(worst, 0.0) << "the float path computed in double";
+}
+
+// Determinism per build holds for the float path too: the same run twice, the same bits.
+TEST(Simulation, FloatSpringsAreDeterministic) {
+  EXPECT_EQ(hanging_after(SpringPrecision::float32), hanging_after(SpringPrecision::float32));
+}
+
+// Float is refused by name where it has no meaning: the implicit integrators.
+TEST(Simulation, FloatPrecisionIsRefusedForTheImplicitIntegratorsByName) {
+  for (const IntegratorKind kind : {IntegratorKind::implicit_euler, IntegratorKind::projective}) {
+    SolverSettings settings;
+    settings.integrator = kind;
+    settings.precision = SpringPrecision::float32;
+    try {
+      validate(settings);
+      ADD_FAILURE() << to_string(kind) << " accepted float";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("solver.precision"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(to_string(kind)), std::string::npos) << e.what();
+    }
+  }
+  SolverSettings explicit_float;
+  explicit_float.precision = SpringPrecision::float32;
+  for (const IntegratorKind kind : {IntegratorKind::network, IntegratorKind::explicit_euler,
+                                    IntegratorKind::verlet, IntegratorKind::rk4}) {
+    explicit_float.integrator = kind;
+    EXPECT_NO_THROW(validate(explicit_float)) << to_string(kind);
+  }
+}
+
 TEST(SimulationMove, AMovedSimulationStepsItsOwnBuffers) {
   const Scene scene = test::asset_scene("curtain");
   Simulation stay = scene.make_simulation();

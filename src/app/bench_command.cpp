@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,14 +52,29 @@ int run_bench(const BenchOptions& o) {
   if (o.threads < 1 || o.threads > kMaxStepThreads)
     throw InputError("command line", "--threads",
                      "must be in [1, " + std::to_string(kMaxStepThreads) + "]");
-  StepBench bench(bare_cloth(o.size), *kind, o.threads);
+  const SpringPrecision precision = precision_option(o.precision);
+  const std::string conflict = precision_conflict(*kind, precision);
+  if (!conflict.empty()) throw InputError("command line", "--precision", conflict);
+  const bool in_float = precision == SpringPrecision::float32;
+  StepBench bench(bare_cloth(o.size), *kind, o.threads, precision);
   // The reference loop (step_bench.h), timed in the same runs: the ratio of
   // the two medians says what the step's layout buys under this run's load.
+  // With float, the double step is timed in the same runs too, for the same reason.
   ReferenceStep reference(bench);
+  std::optional<StepBench> in_double;
+  if (in_float) in_double.emplace(bare_cloth(o.size), *kind, o.threads);
   bench.run(10);  // warm-up: caches, page faults
   reference.run(10);
-  std::vector<double> rates, cpu_rates, reference_rates;
+  if (in_double) in_double->run(10);
+  std::vector<double> rates, cpu_rates, reference_rates, double_rates;
   for (int r = 0; r < o.repeat; ++r) {
+    if (in_double) {
+      const auto start = std::chrono::steady_clock::now();
+      const long taken = in_double->run(o.steps);
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      double_rates.push_back(static_cast<double>(taken) / wall);
+    }
     auto start = std::chrono::steady_clock::now();
     const double cpu_start = thread_cpu_seconds();
     const long taken = bench.run(o.steps);
@@ -82,12 +98,19 @@ int run_bench(const BenchOptions& o) {
   const double ns = 1e9 / (sps * springs);
   const double reference_ns = 1e9 / (median(reference_rates) * springs);
   const double cpu_ns = 1e9 / (median(cpu_rates) * springs);
+  const double double_ns = in_double ? 1e9 / (median(double_rates) * springs) : ns;
+  if (in_double && in_double->simulation().status() != RunStatus::ok) {
+    std::fprintf(stderr, "bench: the benchmark cloth diverged in double (%s)\n",
+                 in_double->simulation().divergence_reason().c_str());
+    return kExitDiverged;
+  }
   if (o.json) {
     nlohmann::json doc = {{"size", o.size},
                           {"nodes", sim.network().node_count()},
                           {"springs", sim.network().spring_count()},
                           {"integrator", o.integrator},
                           {"threads", o.threads},
+                          {"precision", to_string(precision)},
                           {"dt", bench.dt()},
                           {"steps", o.steps},
                           {"repeat", o.repeat},
@@ -98,17 +121,26 @@ int run_bench(const BenchOptions& o) {
                           {"reference_ns_per_spring_update", reference_ns},
                           {"reference_ratio", reference_ns / ns},
                           {"statistic", "median"}};
+    if (in_double) {
+      doc["double_ns_per_spring_update"] = double_ns;
+      doc["double_over_float"] = double_ns / ns;
+    }
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
-    std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, dt %.3g s, %d thread%s\n", o.size, o.size,
-                sim.network().node_count(), sim.network().spring_count(), o.integrator.c_str(),
-                bench.dt(), o.threads, o.threads == 1 ? "" : "s");
+    std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, %s springs, dt %.3g s, %d thread%s\n",
+                o.size, o.size, sim.network().node_count(), sim.network().spring_count(),
+                o.integrator.c_str(), to_string(precision), bench.dt(), o.threads,
+                o.threads == 1 ? "" : "s");
     std::printf("  median of %d runs of %d steps: %.1f steps/s, %.3f ns per spring update\n",
                 o.repeat, o.steps, sps, ns);
     std::printf("  CPU time of the calling thread: %.3f ns per spring update\n", cpu_ns);
     std::printf(
         "  reference scalar loop, same runs: %.3f ns per spring update (%.2fx the step's)\n",
         reference_ns, reference_ns / ns);
+    if (in_double)
+      std::printf(
+          "  double springs, same runs: %.3f ns per spring update (%.2fx the float step's)\n",
+          double_ns, double_ns / ns);
   }
   return kExitOk;
 }

@@ -58,6 +58,9 @@ int main(int argc, char** argv) {
   simulate->add_option("--threads", sim.threads,
                        "Threads sharing each step (results are identical; default 2 on a cloth "
                        "of 64x64 nodes or more when the machine has an idle second core, else 1)");
+  simulate->add_option("--precision", sim.precision,
+                       "The spring layer's arithmetic: double (the default) or float (faster, "
+                       "explicit integrators only; docs/network.md, \"Float springs\")");
   simulate->add_option("--record-fps", sim.record_fps,
                        "Frames per simulated second for --record and --export-pc2 (default 60)");
 
@@ -102,6 +105,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--integrator", bench.integrator, "Integrator to time");
   bench_cmd->add_option("--threads", bench.threads,
                         "Threads sharing each step (default 1; results are identical)");
+  bench_cmd->add_option("--precision", bench.precision,
+                        "double (default), or float: the float spring layer timed beside the "
+                        "double one in the same runs");
   bench_cmd->add_flag("--json", bench.json, "Print JSON");
 
   MaterialOptions mat;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrator.h"
+#include "spring_precision.h"
 
 namespace neurocloth {
 
@@ -20,6 +21,9 @@ inline constexpr int kExitNotConverged = 4;
 // simulate: the step budget ran out before --seconds (the result is healthy, at
 // an earlier time; docs/stability.md).
 inline constexpr int kExitStoppedEarly = 5;
+
+// --precision NAME as a SpringPrecision, or an InputError naming the option.
+SpringPrecision precision_option(const std::string& name);
 
 struct SimulateOptions {
   std::string scene;
@@ -45,6 +49,8 @@ struct SimulateOptions {
   // --threads N: threads sharing each step (results identical); default
   // batch_step_threads (step_threads.h).
   std::optional<int> threads;
+  // --precision double|float: the scene's solver.precision, overridden.
+  std::optional<std::string> precision;
 };
 int run_simulate(const SimulateOptions& options);
 
@@ -89,6 +95,9 @@ struct BenchOptions {
   int repeat = 5;
   std::string integrator = "network";
   int threads = 1;  // SolverSettings::threads
+  // "double", or "float": the float step timed beside the double one in the
+  // same runs (SolverSettings::precision).
+  std::string precision = "double";
   bool json = false;
 };
 int run_bench(const BenchOptions& options);

@@ -28,6 +28,7 @@ nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& num
   if (sim.status() != RunStatus::ok) doc["reason"] = sim.divergence_reason();
   doc["scene"] = scene_path;
   doc["integrator"] = to_string(s.integrator);
+  doc["precision"] = to_string(s.precision);
   doc["adaptive"] = s.adaptive;
   doc["dt"] = s.dt;
   doc["time"] = sim.time();

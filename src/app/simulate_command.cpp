@@ -63,6 +63,9 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
   const AccuracyChoice c =
       choose_for_accuracy(trade, pick.trade, pick.requested, scene.solver, "--accuracy");
   scene.solver = c.settings;
+  // The trade is measured in double (tradeoff_sweep.cpp): its pick runs so.
+  const bool was_float = scene.solver.precision != SpringPrecision::float64;
+  scene.solver.precision = SpringPrecision::float64;
   pick.row = c.row;
   if (c.settings.integrator == IntegratorKind::projective) pick.iterations = c.settings.iterations;
   pick.trade_seconds = trade.seconds;
@@ -71,6 +74,10 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
       "per simulated s)\n",
       pick.requested, describe_setting(c.row).c_str(), pick.trade.c_str(), trade.seconds,
       c.row.position_error_max, c.row.position_error_rms, c.row.wall_per_simulated_second);
+  if (was_float)
+    std::printf(
+        "  note: the scene's solver.precision is float; the pick runs in double, as it "
+        "was measured\n");
   if (o.seconds > trade.seconds)
     std::printf("  note: this run is longer than the measured %g s; errors may grow beyond it\n",
                 trade.seconds);
@@ -93,6 +100,14 @@ nlohmann::json accuracy_json(const AccuracyPick& p) {
 }
 
 }  // namespace
+
+SpringPrecision precision_option(const std::string& name) {
+  const auto precision = parse_precision(name);
+  if (!precision)
+    throw InputError("command line", "--precision",
+                     "unknown precision '" + name + "' (expected one of: " + kPrecisionNames + ")");
+  return *precision;
+}
 
 int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
@@ -130,6 +145,11 @@ int run_simulate(const SimulateOptions& o) {
                      "must be in [1, " + std::to_string(kMaxStepThreads) + "]");
   scene.solver.threads =
       o.threads ? *o.threads : batch_step_threads(scene.topology.rest_positions.size());
+  if (o.precision) scene.solver.precision = precision_option(*o.precision);
+  const std::string conflict = precision_conflict(scene.solver.integrator, scene.solver.precision);
+  if (!conflict.empty())
+    throw InputError("command line", o.precision ? "--precision" : "--integrator",
+                     "solver.precision " + conflict);
 
   if (!(o.progress >= 0) || !std::isfinite(o.progress))
     throw InputError("command line", "--progress", "must be a finite number >= 0 (wall seconds)");

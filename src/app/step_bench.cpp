@@ -87,14 +87,17 @@ Scene bare_shuffled_mesh_cloth(int n) {
 }
 
 namespace {
-Scene with_threads(Scene scene, int threads) {
+Scene with_threads(Scene scene, int threads, SpringPrecision precision) {
   scene.solver.threads = threads;
+  scene.solver.precision = precision;
   return scene;
 }
 }  // namespace
 
-StepBench::StepBench(const Scene& scene, IntegratorKind integrator, int threads)
-    : sim_(with_threads(with_bench_step(scene, integrator), threads).make_simulation()) {}
+StepBench::StepBench(const Scene& scene, IntegratorKind integrator, int threads,
+                     SpringPrecision precision)
+    : sim_(with_threads(with_bench_step(scene, integrator), threads, precision).make_simulation()) {
+}
 
 long StepBench::run(long steps) {
   const long before = sim_.steps();

@@ -34,8 +34,9 @@ Scene bare_shuffled_mesh_cloth(int n);
 class StepBench {
  public:
   // `threads` share each sweep (SolverSettings::threads; the results do not
-  // depend on it).
-  StepBench(const Scene& scene, IntegratorKind integrator, int threads = 1);
+  // depend on it); `precision` is the spring layer's arithmetic.
+  StepBench(const Scene& scene, IntegratorKind integrator, int threads = 1,
+            SpringPrecision precision = SpringPrecision::float64);
   // Takes about `steps` steps and returns how many it took.
   long run(long steps);
   static constexpr long kFrameSteps = 16;

@@ -87,12 +87,14 @@ using namespace spring_chunks;
 // (fx, fy, fz are F.x + a etc. and the b side is at offset b - a); only valid
 // when the chunk's two node ranges [a, a+count) and [b, b+count) are disjoint.
 // Direct == false: store them in fx, fy, fz for accumulate_chunk.
-template <SpringFunctionKind K, bool Direct>
+// T is the force neurons' arithmetic (SpringPrecision): with float, the ends'
+// differences are rounded to float and the outputs widened back to double.
+template <SpringFunctionKind K, bool Direct, typename T>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
-#if defined(__AVX512F__)
+#if defined(NEUROCLOTH_HAND_VECTORISED)
   if constexpr (kHandVectorised) {
-    propagate_chunk_avx512<K, Direct>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
+    propagate_chunk_avx512<K, Direct, T>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
     return;
   }
 #endif
@@ -111,8 +113,9 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
   const double* rest = L.rest_length.data() + first;
   const double* b1 = L.stiffness.data() + first;
   const double* b2 = L.damping.data() + first;
-  const double threshold = L.function.strain_threshold;
-  const double extra = L.function.stiffening_factor - 1.0;
+  const T threshold = static_cast<T>(L.function.strain_threshold);
+  const T extra = static_cast<T>(L.function.stiffening_factor - 1.0);
+  const T min_len2 = static_cast<T>(kMinSpringLength * kMinSpringLength);
   const std::int32_t offset = b - a;
   // Outputs never alias inputs, and (Direct) the two write ranges are disjoint,
   // so no iteration depends on another.
@@ -120,31 +123,35 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
   for (std::int32_t k = 0; k < count; ++k) {
     // Position-force neuron: net = p_b - p_a (the paper's weights 1, -1, written
     // as b - a so that a positive force pulls n_i1 towards n_i2).
-    const double dx = xb[k] - xa[k], dy = yb[k] - ya[k], dz = zb[k] - za[k];
-    const double len2 = dx * dx + dy * dy + dz * dz;
-    const bool has_direction = len2 > kMinSpringLength * kMinSpringLength;
-    const double safe_len2 = has_direction ? len2 : 1.0;
-    const double inv_len = reciprocal_sqrt(safe_len2);
-    const double len = safe_len2 * inv_len;
-    double e = len - rest[k];                           // spring function: linear ...
+    const T dx = static_cast<T>(xb[k] - xa[k]), dy = static_cast<T>(yb[k] - ya[k]),
+            dz = static_cast<T>(zb[k] - za[k]);
+    const T len2 = dx * dx + dy * dy + dz * dz;
+    const bool has_direction = len2 > min_len2;
+    const T safe_len2 = has_direction ? len2 : T(1);
+    const T inv_len = reciprocal_sqrt(safe_len2);
+    const T len = safe_len2 * inv_len;
+    const T r = static_cast<T>(rest[k]);
+    T e = len - r;                                      // spring function: linear ...
     if constexpr (K == SpringFunctionKind::stiffening)  // ... or stiffer beyond the threshold
-      e += extra * std::max(0.0, e - threshold * rest[k]);
+      e += extra * std::max(T(0), e - threshold * r);
     // Velocity-force neuron: (v_b - v_a) projected on the spring, times len.
-    const double rel = (vxb[k] - vxa[k]) * dx + (vyb[k] - vya[k]) * dy + (vzb[k] - vza[k]) * dz;
+    const T rel = static_cast<T>(vxb[k] - vxa[k]) * dx + static_cast<T>(vyb[k] - vya[k]) * dy +
+                  static_cast<T>(vzb[k] - vza[k]) * dz;
     // Force neuron: b1 * spring + b2 * damping, along the unit direction.
-    const double magnitude = b1[k] * e + b2[k] * rel * inv_len;
-    const double scale = has_direction ? magnitude * inv_len : 0.0;
+    const T magnitude = static_cast<T>(b1[k]) * e + static_cast<T>(b2[k]) * rel * inv_len;
+    const T scale = has_direction ? magnitude * inv_len : T(0);
+    const double gx = scale * dx, gy = scale * dy, gz = scale * dz;
     if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
-      fx[k] += scale * dx;
-      fy[k] += scale * dy;
-      fz[k] += scale * dz;
-      fx[k + offset] -= scale * dx;
-      fy[k + offset] -= scale * dy;
-      fz[k + offset] -= scale * dz;
+      fx[k] += gx;
+      fy[k] += gy;
+      fz[k] += gz;
+      fx[k + offset] -= gx;
+      fy[k + offset] -= gy;
+      fz[k + offset] -= gz;
     } else {
-      fx[k] = scale * dx;
-      fy[k] = scale * dy;
-      fz[k] = scale * dz;
+      fx[k] = gx;
+      fy[k] = gy;
+      fz[k] = gz;
     }
   }
 }
@@ -154,7 +161,7 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
 // chunk wholly inside adds its outputs directly (or through accumulate_chunk);
 // a chunk that crosses lo or hi is evaluated by every part it touches, and
 // each adds only to its own nodes (step_threads.h).
-template <SpringFunctionKind K>
+template <SpringFunctionKind K, typename T>
 void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F, std::int32_t lo,
                     std::int32_t hi) {
   Chunk chunk;
@@ -164,36 +171,36 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     const bool a_inside = a >= lo && a + count <= hi;
     const bool b_inside = b >= lo && b + count <= hi;
     if (direct && a_inside && b_inside) {
-      propagate_chunk<K, true>(net.springs, first, count, a, b, s, F.x.data() + a, F.y.data() + a,
-                               F.z.data() + a);
+      propagate_chunk<K, true, T>(net.springs, first, count, a, b, s, F.x.data() + a,
+                                  F.y.data() + a, F.z.data() + a);
       return;
     }
     const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
     if (!touches) return;
-#if defined(__AVX512F__)
+#if defined(NEUROCLOTH_HAND_VECTORISED)
     // A row's neighbours inside this part: summed in registers (same bits).
     const std::int32_t o = b - a;
     if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
       if (o == 1)
-        propagate_row_avx512<K, 1>(net.springs, first, count, a, s, kMinSpringLength,
-                                   F.x.data() + a, F.y.data() + a, F.z.data() + a);
+        propagate_row_avx512<K, T, 1>(net.springs, first, count, a, s, kMinSpringLength,
+                                      F.x.data() + a, F.y.data() + a, F.z.data() + a);
       else
-        propagate_row_avx512<K, 2>(net.springs, first, count, a, s, kMinSpringLength,
-                                   F.x.data() + a, F.y.data() + a, F.z.data() + a);
+        propagate_row_avx512<K, T, 2>(net.springs, first, count, a, s, kMinSpringLength,
+                                      F.x.data() + a, F.y.data() + a, F.z.data() + a);
       return;
     }
 #endif
-    propagate_chunk<K, false>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
+    propagate_chunk<K, false, T>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
     accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
   });
 }
 
-template <SpringFunctionKind K>
+template <SpringFunctionKind K, typename T>
 void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations& act) {
   for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
                                   std::int32_t b, bool) {
-    propagate_chunk<K, false>(net.springs, first, count, a, b, s, act.fx.data() + first,
-                              act.fy.data() + first, act.fz.data() + first);
+    propagate_chunk<K, false, T>(net.springs, first, count, a, b, s, act.fx.data() + first,
+                                 act.fy.data() + first, act.fz.data() + first);
   });
 }
 
@@ -225,10 +232,16 @@ void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVe
   for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
     external_force(in, F, lo, hi);
     const auto first = static_cast<std::int32_t>(lo), last = static_cast<std::int32_t>(hi);
-    if (linear)
-      propagate_part<SpringFunctionKind::linear>(*this, s, F, first, last);
-    else
-      propagate_part<SpringFunctionKind::stiffening>(*this, s, F, first, last);
+    if (in.precision == SpringPrecision::float32) {
+      if (linear)
+        propagate_part<SpringFunctionKind::linear, float>(*this, s, F, first, last);
+      else
+        propagate_part<SpringFunctionKind::stiffening, float>(*this, s, F, first, last);
+    } else if (linear) {
+      propagate_part<SpringFunctionKind::linear, double>(*this, s, F, first, last);
+    } else {
+      propagate_part<SpringFunctionKind::stiffening, double>(*this, s, F, first, last);
+    }
   });
   // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);
@@ -266,12 +279,20 @@ int ClothNetwork::degenerate_springs(const ClothState& s) const {
   return count;
 }
 
-void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act) const {
+void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act,
+                                  SpringPrecision precision) const {
   act.resize(spring_count());
-  if (springs.function.kind == SpringFunctionKind::linear)
-    outputs_all<SpringFunctionKind::linear>(*this, s, act);
-  else
-    outputs_all<SpringFunctionKind::stiffening>(*this, s, act);
+  const bool linear = springs.function.kind == SpringFunctionKind::linear;
+  if (precision == SpringPrecision::float32) {
+    if (linear)
+      outputs_all<SpringFunctionKind::linear, float>(*this, s, act);
+    else
+      outputs_all<SpringFunctionKind::stiffening, float>(*this, s, act);
+  } else if (linear) {
+    outputs_all<SpringFunctionKind::linear, double>(*this, s, act);
+  } else {
+    outputs_all<SpringFunctionKind::stiffening, double>(*this, s, act);
+  }
 }
 
 void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {

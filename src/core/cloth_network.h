@@ -95,8 +95,10 @@ class ClothNetwork {
   void other_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // How many springs are that short at `state` (a diagnostic, off the hot path).
   int degenerate_springs(const ClothState& state) const;
-  // The force neurons' outputs themselves, one per spring (for inspection and learning).
-  void spring_outputs(const ClothState& state, SpringActivations& act) const;
+  // The force neurons' outputs themselves, one per spring (for inspection and
+  // learning), in the arithmetic net_forces uses at `precision`.
+  void spring_outputs(const ClothState& state, SpringActivations& act,
+                      SpringPrecision precision = SpringPrecision::float64) const;
   // a_j = free_j * (F_j / m_j + g): what the velocity neuron integrates.
   void accelerations(const NodeVectors& force, NodeVectors& acc) const;
   // Largest |F_j + m_j g| over free nodes: the paper's "max sum f_i" (Table 1).

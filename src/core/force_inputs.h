@@ -9,6 +9,7 @@
 
 #include "cloth_state.h"
 #include "modules/module_clock.h"
+#include "spring_precision.h"
 #include "step_threads.h"
 
 namespace neurocloth {
@@ -26,6 +27,9 @@ struct ForceInputs {
   // alone). Results do not depend on it (step_threads.h). A simulation points
   // it at its own team before each step.
   StepThreads* threads = nullptr;
+  // The force neurons' arithmetic (SolverSettings::precision); a simulation
+  // sets it from its settings.
+  SpringPrecision precision = SpringPrecision::float64;
 };
 
 }  // namespace neurocloth

@@ -203,7 +203,7 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   const std::string field = "solver";
   in.allow_only(v, field,
                 {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
-                 "check_interval", "iterations", "linear_tolerance"});
+                 "check_interval", "iterations", "linear_tolerance", "precision"});
   if (in.has(v, "integrator")) {
     const std::string name = in.string(v.at("integrator"), field + ".integrator");
     const auto kind = parse_integrator(name);
@@ -231,6 +231,16 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   if (in.has(v, "linear_tolerance"))
     s.linear_tolerance =
         in.number(v.at("linear_tolerance"), field + ".linear_tolerance", limits::kLinearTolerance);
+  if (in.has(v, "precision")) {
+    const std::string name = in.string(v.at("precision"), field + ".precision");
+    const auto precision = parse_precision(name);
+    if (!precision)
+      in.fail(field + ".precision",
+              "unknown precision '" + name + "' (expected one of: " + kPrecisionNames + ")");
+    s.precision = *precision;
+    const std::string conflict = precision_conflict(s.integrator, s.precision);
+    if (!conflict.empty()) in.fail(field + ".precision", conflict);
+  }
   return s;
 }
 

@@ -83,6 +83,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       force_scale_ = std::max(force_scale_, std::abs(net_.mass(i)) * net_.gravity.norm());
   if (force_scale_ == 0.0) force_scale_ = 1e-9;
   inputs_.clocks.resize(net_.force_modules.size());
+  inputs_.precision = settings_.precision;
   constraint_clocks_.resize(constraints_.size());
   for (const auto& c : constraints_)
     module_states_.push_back(c->make_state());
@@ -142,6 +143,7 @@ void Simulation::set_solver_settings(const SolverSettings& settings) {
       make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
                       settings.iterations, settings.linear_tolerance);
   settings_ = settings;
+  inputs_.precision = settings_.precision;
   if (threads_.size() != settings_.threads) threads_ = OwnedStepThreads(settings_.threads);
   integrator_ = std::move(integrator);
   start_.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0 : net_.node_count());

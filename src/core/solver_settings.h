@@ -10,6 +10,7 @@
 
 #include "integrator.h"
 #include "physical_limits.h"
+#include "spring_precision.h"
 #include "step_controller.h"
 #include "step_threads.h"
 
@@ -62,7 +63,26 @@ struct SolverSettings {
   // kMinThreadedNodes nodes (step_threads.h). The results are bit-identical
   // to one thread's; only the wall time changes. 1: the calling thread alone.
   int threads = 1;
+  // The spring layer's force neurons in double (the default) or float, where
+  // a user asks for speed; docs/network.md, "Float springs", gives its
+  // measured error. Explicit integrators only: the implicit ones linearise the
+  // same springs in double, and learning differentiates the double step.
+  SpringPrecision precision = SpringPrecision::float64;
 };
+
+// Why `precision` cannot go with `integrator`, or "" when it can. The implicit
+// integrators' Newton and local-global solves pair the forces with a double
+// linearisation of the same springs: float forces would only add noise to
+// what they converge to, and they are not where those steps spend their time.
+inline std::string precision_conflict(IntegratorKind integrator, SpringPrecision precision) {
+  if (precision == SpringPrecision::float64) return "";
+  if (integrator != IntegratorKind::implicit_euler && integrator != IntegratorKind::projective)
+    return "";
+  return std::string(
+             "\"float\" is for the explicit integrators (network, explicit_euler, "
+             "verlet, rk4), not ") +
+         to_string(integrator);
+}
 
 // Throws std::invalid_argument naming the first field out of its range
 // ("solver.dt must be a finite number > 0, got -1"); the same limits as a scene file.
@@ -100,6 +120,10 @@ inline void validate(const SolverSettings& s) {
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
   if (!limits::kLinearTolerance.contains(s.linear_tolerance))
     fail("linear_tolerance", "in [1e-14, 0.01]", s.linear_tolerance);
+  if (s.precision != SpringPrecision::float64 && s.precision != SpringPrecision::float32)
+    fail("precision", std::string("one of ") + kPrecisionNames, static_cast<double>(s.precision));
+  const std::string conflict = precision_conflict(s.integrator, s.precision);
+  if (!conflict.empty()) throw std::invalid_argument("solver.precision " + conflict);
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));

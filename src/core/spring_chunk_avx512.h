@@ -11,10 +11,16 @@
 // operations whatever its place in a chunk or a thread's part. The bits
 // differ from the portable loop's in the last place (tested against it in
 // spring_chunk_test.cpp). Internal to the core.
-#if defined(__AVX512F__)
+//
+// FloatForces8 is the same in float (SpringPrecision::float32). Both need
+// AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512
+// masks): every AVX-512 CPU since Skylake-X has both.
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#define NEUROCLOTH_HAND_VECTORISED 1
 #include <immintrin.h>
 
 #include <cstdint>
+#include <type_traits>
 
 #include "cloth_state.h"
 #include "spring_layer.h"
@@ -23,6 +29,10 @@ namespace neurocloth {
 namespace spring_chunks {
 
 constexpr bool kHandVectorised = true;
+
+inline __mmask8 first_lanes(std::int32_t n) {
+  return n >= 8 ? __mmask8(0xFF) : __mmask8((1u << n) - 1u);
+}
 
 // The force neurons' outputs of springs k..k+7 of a chunk whose b ends are
 // `offset` nodes after its a ends (p* and v* point at node a of spring 0);
@@ -41,8 +51,8 @@ struct Forces8 {
   std::int32_t offset;
   __m512d threshold, extra, min_len2;
 
-  Forces8(const SpringLayer& L, std::int32_t first, std::int32_t a, std::int32_t b,
-          const ClothState& s, double min_length)
+  Forces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
+          std::int32_t b, const ClothState& s, double min_length)
       : px(s.x.data() + a),
         py(s.y.data() + a),
         pz(s.z.data() + a),
@@ -98,17 +108,92 @@ struct Forces8 {
   }
 };
 
-inline __mmask8 first_lanes(std::int32_t n) {
-  return n >= 8 ? __mmask8(0xFF) : __mmask8((1u << n) - 1u);
-}
+// Forces8's arithmetic in float (SpringPrecision::float32): the differences
+// of the ends' positions and velocities are taken in double and rounded,
+// everything after is float, and the outputs are widened back to double for
+// the node sums. Eight springs a step in 256-bit registers rather than 16 in
+// 512-bit ones: the loads and the node sums are double either way, and 16
+// lanes cost a join of two halves per input and a split per output, which
+// measured slower than the double kernel (docs/network.md, "Float springs").
+// vrsqrt14ps is within 2^-14, so one Newton step reaches float's round-off.
+template <SpringFunctionKind K>
+struct FloatForces8 {
+  const double* px;
+  const double* py;
+  const double* pz;
+  const double* vx;
+  const double* vy;
+  const double* vz;
+  const double* rest;
+  const double* b1;
+  const double* b2;
+  std::int32_t offset;
+  __m256 threshold, extra, min_len2;
+
+  FloatForces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
+               std::int32_t b, const ClothState& s, double min_length)
+      : px(s.x.data() + a),
+        py(s.y.data() + a),
+        pz(s.z.data() + a),
+        vx(s.vx.data() + a),
+        vy(s.vy.data() + a),
+        vz(s.vz.data() + a),
+        rest(L.rest_length.data() + first),
+        b1(L.stiffness.data() + first),
+        b2(L.damping.data() + first),
+        offset(b - a),
+        threshold(_mm256_set1_ps(static_cast<float>(L.function.strain_threshold))),
+        extra(_mm256_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
+        min_len2(_mm256_set1_ps(static_cast<float>(min_length * min_length))) {}
+
+  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
+    // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    const auto narrow = [](__m512d v) { return _mm512_maskz_cvtpd_ps(0xFF, v); };
+    const auto diff = [&](const double* p) { return narrow(_mm512_sub_pd(at(p + offset), at(p))); };
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 dx = diff(px), dy = diff(py), dz = diff(pz);
+    const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                      _mm256_mul_ps(dz, dz));
+    const __mmask8 has_direction = _mm256_cmp_ps_mask(len2, min_len2, _CMP_GT_OQ);
+    const __m256 safe_len2 = _mm256_mask_blend_ps(has_direction, one, len2);
+    const __m256 y = _mm256_maskz_rsqrt14_ps(0xFF, safe_len2);
+    const __m256 inv_len = _mm256_mul_ps(
+        y, _mm256_sub_ps(
+               _mm256_set1_ps(1.5f),
+               _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), safe_len2), _mm256_mul_ps(y, y))));
+    const __m256 len = _mm256_mul_ps(safe_len2, inv_len);
+    const __m256 r = narrow(at(rest));
+    __m256 e = _mm256_sub_ps(len, r);
+    if constexpr (K == SpringFunctionKind::stiffening) {
+      const __m256 beyond = _mm256_maskz_max_ps(0xFF, _mm256_setzero_ps(),
+                                                _mm256_sub_ps(e, _mm256_mul_ps(threshold, r)));
+      e = _mm256_add_ps(e, _mm256_mul_ps(extra, beyond));
+    }
+    const __m256 rel =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(diff(vx), dx), _mm256_mul_ps(diff(vy), dy)),
+                      _mm256_mul_ps(diff(vz), dz));
+    const __m256 magnitude =
+        _mm256_add_ps(_mm256_mul_ps(narrow(at(b1)), e),
+                      _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
+    const __m256 scale = _mm256_maskz_mul_ps(has_direction, magnitude, inv_len);
+    gx = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
+    gy = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
+    gz = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dz));
+  }
+};
+
+// The force neurons of a chunk in `T`'s arithmetic.
+template <SpringFunctionKind K, typename T>
+using Forces = std::conditional_t<std::is_same_v<T, float>, FloatForces8<K>, Forces8<K>>;
 
 // propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
 // b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
-template <SpringFunctionKind K, bool Direct>
+template <SpringFunctionKind K, bool Direct, typename T>
 void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
                             std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
                             double* fx, double* fy, double* fz) {
-  const Forces8<K> forces(L, first, a, b, s, min_length);
+  const Forces<K, T> forces(L, first, count, a, b, s, min_length);
   const std::int32_t offset = b - a;
   for (std::int32_t k = 0; k < count; k += 8) {
     const __mmask8 m = first_lanes(count - k);
@@ -134,12 +219,12 @@ void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32
 // +g[j] - g[j - O]. The outputs never leave the registers: g[j - O] is the
 // vector before shifted by O lanes. Each node's sum is the expression
 // accumulate_chunk evaluates, so the bits are the same as that path's.
-template <SpringFunctionKind K, int O>
+template <SpringFunctionKind K, typename T, int O>
 void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
                           std::int32_t a, const ClothState& s, double min_length, double* fx,
                           double* fy, double* fz) {
   static_assert(O > 0 && O < 8, "a shift within one vector");
-  const Forces8<K> forces(L, first, a, a + O, s, min_length);
+  const Forces<K, T> forces(L, first, count, a, a + O, s, min_length);
   __m512d px = _mm512_setzero_pd(), py = px, pz = px;
   const auto shifted = [](__m512d now, __m512d before) {
     return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),

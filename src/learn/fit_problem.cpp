@@ -20,6 +20,13 @@ void FitProblem::Impl::build_model() {
     throw InputError(scene.path, "solver.integrator",
                      std::string("fit: integrator '") + to_string(s.integrator) +
                          "' has no adjoint (fit runs the network integrator, fixed or adaptive)");
+  // The adjoint differentiates the double step: a float forward pass would
+  // make its gradients those of another function.
+  if (s.precision != SpringPrecision::float64)
+    throw InputError(scene.path, "solver.precision",
+                     std::string("fit: precision '") + to_string(s.precision) +
+                         "' has no adjoint (learning differentiates the double step); set it "
+                         "to \"double\" to fit this scene");
   base.net = scene.build_network();
   // The scene's modules in the order Scene::make_simulation runs them, and
   // which declaration each one came from.

@@ -259,9 +259,17 @@ struct Sweep {
 
 }  // namespace
 
-TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
+TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scene_file,
                             const TradeoffPlan& plan,
                             const std::function<void(const std::string&)>& log) {
+  // The trade is measured in double, every method alike: the implicit ones
+  // have no float path, and a float scene's own error against double is
+  // measured apart (docs/network.md, "Float springs").
+  Scene scene = scene_as_given;
+  if (scene.solver.precision != SpringPrecision::float64) {
+    scene.solver.precision = SpringPrecision::float64;
+    if (log) log("the scene's solver.precision is float; the trade is measured in double");
+  }
   if (!(plan.seconds > 0) || !std::isfinite(plan.seconds))
     throw std::invalid_argument("seconds must be a finite number > 0");
   if (plan.samples < 1) throw std::invalid_argument("samples must be >= 1");
