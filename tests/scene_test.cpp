@@ -23,17 +23,9 @@ using test::scratch;
 using test::scratch_path;
 using test::write_file;
 
+using test::grid_scene;
 using test::line_of;
 using test::SceneBuilder;
-
-// A small valid grid scene.
-SceneBuilder grid_scene() {
-  return SceneBuilder(4, 5, 0.1)
-      .name("small")
-      .origin(Vec3(1, 2, 3))
-      .pins({{0, 0}, {2, 3}})
-      .gravity(Vec3(0, -9.81, 0));
-}
 
 // `text` with the first occurrence of `from` replaced by `to`: for what JSON
 // cannot hold (a number out of range, a missing comma).
@@ -318,50 +310,6 @@ TEST(SceneFields, HugeIntegerIsOutOfRange) {
 
 TEST(SceneFields, FractionalRowsAreRejected) {
   expect_grid_error(grid_scene().set("/cloth/grid/rows", 4.5), "cloth.grid.rows", "\"rows\"");
-}
-
-TEST(SceneFields, UnknownIntegratorListsValidNames) {
-  const std::string path = scratch_path("integrator.json");
-  const std::string text = grid_scene().set("/solver/integrator", "leapfrog").text();
-  const auto e = parse_error(text, path);
-  ASSERT_TRUE(e);
-  expect_names(*e, path, "solver.integrator", line_of(text, "\"integrator\""));
-  const std::string what = e->what();
-  EXPECT_NE(what.find("leapfrog"), std::string::npos) << what;
-  for (const char* name : {"network", "explicit_euler", "verlet", "rk4", "implicit_euler"})
-    EXPECT_NE(what.find(name), std::string::npos) << name << " missing from: " << what;
-}
-
-TEST(SceneFields, PrecisionIsDoubleUnlessTheSceneSaysFloat) {
-  EXPECT_EQ(parse_scene(grid_scene().text(), scratch_path("p0.json")).solver.precision,
-            SpringPrecision::float64);
-  const Scene f =
-      parse_scene(grid_scene().set("/solver/precision", "float").text(), scratch_path("p1.json"));
-  EXPECT_EQ(f.solver.precision, SpringPrecision::float32);
-}
-
-TEST(SceneFields, UnknownPrecisionListsValidNames) {
-  const std::string path = scratch_path("precision.json");
-  const std::string text = grid_scene().set("/solver/precision", "half").text();
-  const auto e = parse_error(text, path);
-  ASSERT_TRUE(e);
-  expect_names(*e, path, "solver.precision", line_of(text, "\"precision\""));
-  const std::string what = e->what();
-  for (const char* name : {"half", "double", "float"})
-    EXPECT_NE(what.find(name), std::string::npos) << name << " missing from: " << what;
-}
-
-// The implicit integrators linearise the springs in double: float is refused there, by name.
-TEST(SceneFields, FloatPrecisionIsRefusedForTheImplicitIntegrators) {
-  for (const char* integrator : {"implicit_euler", "projective"}) {
-    const std::string path = scratch_path(std::string("precision_") + integrator + ".json");
-    const std::string text =
-        grid_scene().set("/solver/integrator", integrator).set("/solver/precision", "float").text();
-    const auto e = parse_error(text, path);
-    ASSERT_TRUE(e) << integrator;
-    expect_names(*e, path, "solver.precision", line_of(text, "\"precision\""));
-    EXPECT_NE(std::string(e->what()).find(integrator), std::string::npos) << e->what();
-  }
 }
 
 TEST(SceneFields, RowsAndColsMustBePositive) {

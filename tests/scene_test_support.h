@@ -10,6 +10,7 @@
 
 #include "input_error.h"
 #include "scene.h"
+#include "scene_builder.h"
 
 namespace neurocloth::test {
 namespace fs = std::filesystem;
@@ -61,6 +62,15 @@ inline void expect_names(const InputError& e, const std::string& path, const std
   if (line > 0) {
     EXPECT_NE(what.find(path + ":" + std::to_string(line) + ":"), std::string::npos) << what;
   }
+}
+
+// A small valid grid scene, for tests that change one field of it.
+inline SceneBuilder grid_scene() {
+  return SceneBuilder(4, 5, 0.1)
+      .name("small")
+      .origin(Vec3(1, 2, 3))
+      .pins({{0, 0}, {2, 3}})
+      .gravity(Vec3(0, -9.81, 0));
 }
 
 }  // namespace neurocloth::test
