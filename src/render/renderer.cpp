@@ -19,7 +19,10 @@ namespace neurocloth {
 namespace {
 
 // Vertex attribute slots, shared by every shader (see shaders/*.vert).
-constexpr GLuint kPosition = 0, kNormal = 1, kColour = 1, kScalar = 2;
+constexpr GLuint kPosition = 0, kNormal = 1, kColour = 1, kScalar = 2, kGridSide = 1;
+// Grid strips this many cells long: few enough triangles (about 4,000) and
+// short enough that the width grid.vert gives each end covers the line between.
+constexpr int kGridCellsPerSegment = 5;
 constexpr int kOverlayFloats = 7;  // x, y, z, r, g, b, a
 // Plane colliders reach this many grid sizes: to the horizon of any framed view.
 constexpr double kPlaneReach = 25;
@@ -77,7 +80,8 @@ struct Renderer::Impl {
     GLint view_projection, point_size, round_points;
   } lu;
   struct {
-    GLint view_projection, cell, origin, minor, major, fade_centre, fade_radius;
+    GLint view_projection, cell, origin, minor, major, fade_centre, fade_radius, viewport,
+        max_half_width;
   } gu;
   GLint legend_viewport;
 
@@ -95,13 +99,14 @@ struct Renderer::Impl {
   };
   GLuint vao[kVaoCount] = {};
   GlBuffer position, normal, strain, triangles, spring_pairs, node_colour;
-  GlBuffer collider_position, collider_normal, collider_index, grid_square, overlay, legend_quad,
+  GlBuffer collider_position, collider_normal, collider_index, grid_strips, overlay, legend_quad,
       ghost;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
   std::size_t triangle_indices = 0;
   std::size_t spring_begin[kSpringFamilyCount + 1] = {};  // index ranges by family
   std::size_t collider_indices = 0;
+  std::size_t grid_vertices = 0;
   bool geometry_uploaded = false;
   GroundGrid ground;
 
@@ -123,7 +128,8 @@ struct Renderer::Impl {
     gu = {grid.uniform("u_view_projection"), grid.uniform("u_cell"),
           grid.uniform("u_origin"),          grid.uniform("u_minor_colour"),
           grid.uniform("u_major_colour"),    grid.uniform("u_fade_centre"),
-          grid.uniform("u_fade_radius")};
+          grid.uniform("u_fade_radius"),     grid.uniform("u_viewport"),
+          grid.uniform("u_max_half_width")};
     legend_viewport = legend.uniform("u_viewport");
     glGenVertexArrays(kVaoCount, vao);
     // Attribute layouts are fixed once: buffers keep their names when they
@@ -147,7 +153,8 @@ struct Renderer::Impl {
     attribute(kNormal, collider_normal, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, collider_index.id());
     glBindVertexArray(vao[grid_vao]);
-    attribute(kPosition, grid_square, 3, 3, 0);
+    attribute(kPosition, grid_strips, 3, kGridFloatsPerVertex, 0);
+    attribute(kGridSide, grid_strips, 3, kGridFloatsPerVertex, 3);
     glBindVertexArray(vao[overlay_vao]);
     attribute(kPosition, overlay, 3, kOverlayFloats, 0);
     attribute(kColour, overlay, 4, kOverlayFloats, 3);
@@ -167,7 +174,7 @@ struct Renderer::Impl {
     long n = 0;
     for (const GlBuffer* b :
          {&position, &normal, &strain, &triangles, &spring_pairs, &node_colour, &collider_position,
-          &collider_normal, &collider_index, &grid_square, &overlay, &legend_quad, &ghost})
+          &collider_normal, &collider_index, &grid_strips, &overlay, &legend_quad, &ghost})
       n += b->allocations();
     return n;
   }
@@ -175,7 +182,7 @@ struct Renderer::Impl {
   void upload_geometry(const FrameSnapshot& s);
   void upload_frame(const FrameSnapshot& s, const RenderOptions& o);
   void draw_surfaces(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
-  void draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp);
+  void draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int width, int height);
   void draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s, const RenderOptions& o,
                   int height);
   void draw_legend(const RenderOptions& o, int width, int height);
@@ -215,7 +222,9 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
     spring_pairs.upload(pairs);
   }
   ground = place_ground_grid(s);
-  grid_square.upload(ground_grid_square(ground));
+  const std::vector<float> strips = ground_grid_strips(ground, kGridCellsPerSegment);
+  grid_strips.upload(strips);
+  grid_vertices = strips.size() / kGridFloatsPerVertex;
   const SurfaceMesh mesh = collider_mesh(geometry ? geometry->colliders : std::vector<ModuleSpec>(),
                                          ground.centre, kPlaneReach * ground.half_size());
   collider_position.upload(mesh.position);
@@ -297,7 +306,8 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
 
 // After the opaque surfaces, blended over them without writing depth, so it
 // shows through nothing and hides nothing.
-void Renderer::Impl::draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp) {
+void Renderer::Impl::draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int width,
+                               int height) {
   grid.use();
   glUniformMatrix4fv(gu.view_projection, 1, GL_FALSE, vp.data());
   glUniform1f(gu.cell, float(ground.cell));
@@ -309,11 +319,19 @@ void Renderer::Impl::draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f&
   glUniform3f(gu.fade_centre, float(camera.target.x()), float(camera.target.y()),
               float(camera.target.z()));
   glUniform1f(gu.fade_radius, float(ground.half_size()));
+  glUniform2f(gu.viewport, float(width), float(height));
+  glUniform1f(gu.max_half_width, float(0.5 * ground.cell));
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   glDepthMask(GL_FALSE);
+  // Where strips cross (and where they are half a cell wide and meet), a pixel
+  // is blended once: the first strip to draw it marks it in the stencil.
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   glBindVertexArray(vao[grid_vao]);
-  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(grid_vertices));
+  glDisable(GL_STENCIL_TEST);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
 }
@@ -449,7 +467,8 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   const palette::Colour& bg = palette::kBackground;
   glClearColor(bg[0], bg[1], bg[2], 1);
   glClearDepth(1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   // Everything the renderer relies on is set here: the window's UI may have
   // changed any of it since the last frame.
   glEnable(GL_DEPTH_TEST);
@@ -457,13 +476,14 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);  // two-sided cloth
   glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
   glDisable(GL_BLEND);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 
   const Eigen::Matrix4f vp = camera.projection(double(width) / height) * camera.view();
   m.draw_surfaces(camera, vp, options);
-  if (options.grid) m.draw_grid(camera, vp);
+  if (options.grid) m.draw_grid(camera, vp, width, height);
   m.draw_lines(vp, snapshot, options, height);
   if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);
