@@ -153,12 +153,12 @@ TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
     EXPECT_LT((by_hand[i] - F.at(i)).norm(), 1e-12 * scale) << i;
 }
 
-// Every spring's output against the textbook formula (a true square root and
-// a division), on a cloth whose chunks end in part-filled vectors (rows of 7
-// and 6 springs), linear and stiffening, with one spring of zero length. The step's
-// 1/len (reciprocal_sqrt.h, or the hand-vectorised estimate plus Newton
-// steps) must be round-off: one Newton step fewer fails by 1e-9.
-TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
+// Every spring's output of `precision` against the textbook formula in double
+// (a true square root and a division), on a cloth whose chunks end in
+// part-filled vectors (rows of 7 and 6 springs, as chunk tails leave them),
+// linear and stiffening, with one spring of zero length (no direction: no
+// force). Each term of a force may be off by `ulps` of its own size.
+void expect_textbook_spring_outputs(SpringPrecision precision, double ulps) {
   for (const SpringFunctionKind kind :
        {SpringFunctionKind::linear, SpringFunctionKind::stiffening}) {
     Scene scene = test::asset_scene("free_cloth");
@@ -166,53 +166,9 @@ TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
     net.springs.function = {kind, 0.05, 10.0};
     ClothState s = shaken(scene, 11);
     const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
-    s.set_position(b0, s.position(a0));  // spring 3 has no direction: no force
+    s.set_position(b0, s.position(a0));
     SpringActivations act;
-    net.spring_outputs(s, act);
-    for (std::size_t k = 0; k < net.spring_count(); ++k) {
-      const int a = net.springs.node_a[k], b = net.springs.node_b[k];
-      const Vec3 d = s.position(b) - s.position(a);
-      const double len = std::sqrt(d.squaredNorm());
-      const Vec3 got(act.fx[k], act.fy[k], act.fz[k]);
-      if (len <= kMinSpringLength) {
-        EXPECT_EQ(got, Vec3::Zero()) << k;
-        continue;
-      }
-      const double rest = net.springs.rest_length[k];
-      const double b1 = net.springs.stiffness[k], b2 = net.springs.damping[k];
-      const Vec3 dv = s.velocity(b) - s.velocity(a);
-      const double magnitude =
-          b1 * net.springs.function.force(len - rest, rest) + b2 * dv.dot(d) / len;
-      const Vec3 want = magnitude / len * d;
-      // Round-off of len - rest and of the projections, a few ulp of each term's size.
-      const double scale = b1 * net.springs.function.max_slope() * len + b2 * dv.norm();
-      EXPECT_LT((got - want).norm(), 1e-14 * scale) << "spring " << k << ", " << to_string(kind);
-    }
-  }
-}
-
-// float's unit round-off is 2^-24; its epsilon 2^-23.
-constexpr double kFloatEpsilon = 1.1920928955078125e-7;
-
-// The float path (SpringPrecision::float32) against the textbook force in
-// double, on the cloth of the test above (part-filled vectors: rows of 7 and
-// 6 springs leave 16-lane float vectors masked, as chunk tails do), linear and
-// stiffening, with one spring of zero length. Each input is rounded to float
-// once (|d|, |dv| within 2^-24 relative), len and 1/len carry a few ulp, so
-// every term of the force is off by a few float ulp of its own size: 8
-// epsilon of the same scale as above. One Newton step fewer on vrsqrt14ps
-// (2^-14) or the portable seed's (5e-6 after two) fails it.
-TEST(ClothNetwork, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
-  for (const SpringFunctionKind kind :
-       {SpringFunctionKind::linear, SpringFunctionKind::stiffening}) {
-    Scene scene = test::asset_scene("free_cloth");
-    ClothNetwork net = scene.build_network();
-    net.springs.function = {kind, 0.05, 10.0};
-    ClothState s = shaken(scene, 11);
-    const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
-    s.set_position(b0, s.position(a0));  // spring 3 has no direction: no force
-    SpringActivations act;
-    net.spring_outputs(s, act, SpringPrecision::float32);
+    net.spring_outputs(s, act, precision);
     int springs_with_direction = 0;
     for (std::size_t k = 0; k < net.spring_count(); ++k) {
       const int a = net.springs.node_a[k], b = net.springs.node_b[k];
@@ -231,11 +187,29 @@ TEST(ClothNetwork, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
           b1 * net.springs.function.force(len - rest, rest) + b2 * dv.dot(d) / len;
       const Vec3 want = magnitude / len * d;
       const double scale = b1 * net.springs.function.max_slope() * len + b2 * dv.norm();
-      EXPECT_LT((got - want).norm(), 8 * kFloatEpsilon * scale)
-          << "spring " << k << ", " << to_string(kind);
+      EXPECT_LT((got - want).norm(), ulps * scale) << "spring " << k << ", " << to_string(kind);
     }
     EXPECT_EQ(springs_with_direction, static_cast<int>(net.spring_count()) - 1);
   }
+}
+
+// The step's 1/len (reciprocal_sqrt.h, or the hand-vectorised estimate plus
+// Newton steps) must be round-off: a few ulp of each term, and one Newton
+// step fewer fails by 1e-9.
+TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
+  expect_textbook_spring_outputs(SpringPrecision::float64, 1e-14);
+}
+
+// float's unit round-off is 2^-24; its epsilon 2^-23.
+constexpr double kFloatEpsilon = 1.1920928955078125e-7;
+
+// The float path (SpringPrecision::float32): each input is rounded to float
+// once (|d|, |dv| within 2^-24 relative), len and 1/len carry a few ulp, so
+// every term is off by a few float ulp of its own size: 8 epsilon. One Newton
+// step fewer on vrsqrt14ps (2^-14) or the portable seed's (5e-6 after two)
+// fails it.
+TEST(ClothNetwork, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
+  expect_textbook_spring_outputs(SpringPrecision::float32, 8 * kFloatEpsilon);
 }
 
 // The step's own sweep in float (direct chunks, rows summed in registers,

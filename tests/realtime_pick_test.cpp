@@ -121,6 +121,14 @@ std::string write_trade(const std::string& name, int grid, const std::vector<Tra
   return path;
 }
 
+// The pick on the drape at 8 x 8 with a trade of `rows` beside it, where up to
+// 4 iterations fit the budget.
+RealtimePick pick_at_8(const std::vector<TradeRow>& rows) {
+  const std::string path = write_trade("drape.8.csv", 8, rows);
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  return pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
+}
+
 // Errors falling with the iterations, as on a smooth cloth: 30% / iterations.
 std::vector<TradeRow> falling_errors() {
   std::vector<TradeRow> rows;
@@ -157,13 +165,9 @@ TEST(RealtimePick, QuotesThePickedSettingsErrorMeasuredAtThisSize) {
 
 TEST(RealtimePick, PrefersTheLeastMeasuredErrorAmongTheSettingsThatFit) {
   // 2 iterations land nearest the reference; 7 nearer still, but they do not fit.
-  const std::string path =
-      write_trade("drape.8.csv", 8,
-                  {projective_row(kRealtimeStep, 1, 0.2), projective_row(kRealtimeStep, 2, 0.05),
-                   projective_row(kRealtimeStep, 4, 0.06), projective_row(kRealtimeStep, 7, 0.01)});
-  FakeCosts costs{100.0, 0.1, 0.14, {}};
   const RealtimePick pick =
-      pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
+      pick_at_8({projective_row(kRealtimeStep, 1, 0.2), projective_row(kRealtimeStep, 2, 0.05),
+                 projective_row(kRealtimeStep, 4, 0.06), projective_row(kRealtimeStep, 7, 0.01)});
   EXPECT_EQ(pick.picked.iterations, 2);
   ASSERT_TRUE(pick.measured);
   EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.05);
@@ -173,12 +177,8 @@ TEST(RealtimePick, PrefersTheLeastMeasuredErrorAmongTheSettingsThatFit) {
 // Errors within the reference's resolution (here 0.1% of the size) cannot be
 // told apart: then the most iterations that fit, as without a trade.
 TEST(RealtimePick, ErrorsTheReferenceCannotTellApartAreATie) {
-  const std::string path = write_trade(
-      "drape.8.csv", 8,
+  const RealtimePick pick = pick_at_8(
       {projective_row(kRealtimeStep, 2, 0.0500), projective_row(kRealtimeStep, 4, 0.0509)});
-  FakeCosts costs{100.0, 0.1, 0.14, {}};
-  const RealtimePick pick =
-      pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
   EXPECT_EQ(pick.picked.iterations, 4);
   ASSERT_TRUE(pick.measured);
   EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.0509);

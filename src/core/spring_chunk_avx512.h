@@ -34,11 +34,9 @@ inline __mmask8 first_lanes(std::int32_t n) {
   return n >= 8 ? __mmask8(0xFF) : __mmask8((1u << n) - 1u);
 }
 
-// The force neurons' outputs of springs k..k+7 of a chunk whose b ends are
-// `offset` nodes after its a ends (p* and v* point at node a of spring 0);
-// lanes outside `m` are zero.
-template <SpringFunctionKind K>
-struct Forces8 {
+// Where a chunk's inputs are: the ends' positions and velocities from node a
+// of its first spring (the b ends `offset` nodes on), its springs' weights.
+struct ChunkInputs {
   const double* px;
   const double* py;
   const double* pz;
@@ -49,10 +47,9 @@ struct Forces8 {
   const double* b1;
   const double* b2;
   std::int32_t offset;
-  __m512d threshold, extra, min_len2;
 
-  Forces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
-          std::int32_t b, const ClothState& s, double min_length)
+  ChunkInputs(const SpringLayer& L, std::int32_t first, std::int32_t a, std::int32_t b,
+              const ClothState& s)
       : px(s.x.data() + a),
         py(s.y.data() + a),
         pz(s.z.data() + a),
@@ -62,7 +59,19 @@ struct Forces8 {
         rest(L.rest_length.data() + first),
         b1(L.stiffness.data() + first),
         b2(L.damping.data() + first),
-        offset(b - a),
+        offset(b - a) {}
+};
+
+// The force neurons' outputs of springs k..k+7 of a chunk whose b ends are
+// `offset` nodes after its a ends (p* and v* point at node a of spring 0);
+// lanes outside `m` are zero.
+template <SpringFunctionKind K>
+struct Forces8 : ChunkInputs {
+  __m512d threshold, extra, min_len2;
+
+  Forces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
+          std::int32_t b, const ClothState& s, double min_length)
+      : ChunkInputs(L, first, a, b, s),
         threshold(_mm512_set1_pd(L.function.strain_threshold)),
         extra(_mm512_set1_pd(L.function.stiffening_factor - 1.0)),
         min_len2(_mm512_set1_pd(min_length * min_length)) {}
@@ -117,31 +126,12 @@ struct Forces8 {
 // measured slower than the double kernel (docs/network.md, "Float springs").
 // vrsqrt14ps is within 2^-14, so one Newton step reaches float's round-off.
 template <SpringFunctionKind K>
-struct FloatForces8 {
-  const double* px;
-  const double* py;
-  const double* pz;
-  const double* vx;
-  const double* vy;
-  const double* vz;
-  const double* rest;
-  const double* b1;
-  const double* b2;
-  std::int32_t offset;
+struct FloatForces8 : ChunkInputs {
   __m256 threshold, extra, min_len2;
 
   FloatForces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
                std::int32_t b, const ClothState& s, double min_length)
-      : px(s.x.data() + a),
-        py(s.y.data() + a),
-        pz(s.z.data() + a),
-        vx(s.vx.data() + a),
-        vy(s.vy.data() + a),
-        vz(s.vz.data() + a),
-        rest(L.rest_length.data() + first),
-        b1(L.stiffness.data() + first),
-        b2(L.damping.data() + first),
-        offset(b - a),
+      : ChunkInputs(L, first, a, b, s),
         threshold(_mm256_set1_ps(static_cast<float>(L.function.strain_threshold))),
         extra(_mm256_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
         min_len2(_mm256_set1_ps(static_cast<float>(min_length * min_length))) {}
