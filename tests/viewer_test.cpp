@@ -332,6 +332,16 @@ TEST_F(Viewer, WithoutADisplayItSaysSoInOneLineNamingTheSnapshotCommand) {
   EXPECT_NE(r.err.find("--out FILE.png"), std::string::npos) << r.err;
 }
 
+// --sim-only needs no display. A run too short to sample past its warm-up
+// says so rather than printing a median of nothing as "0 steps/s" (the loop
+// samples every 16 ms, so 10 ms never reaches a sample however fast the machine).
+TEST_F(Viewer, ASimOnlyRunTooShortToMeasureSaysSo) {
+  const Outcome r = run({"--size", "8", "--sim-only", "0.01"}, /*display=*/false);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("too short to measure"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("0 steps/s"), std::string::npos) << r.out;
+}
+
 // A script is read before any window opens, so these need no display.
 TEST_F(Viewer, ABrokenScriptIsNamedWithItsFieldAndLine) {
   const std::string script = write("bad.json",

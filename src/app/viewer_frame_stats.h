@@ -22,6 +22,8 @@ class FrameStats {
   double median_fps() const;
   double median_steps_per_second() const { return median(steps_per_second_); }
   double median_realtime_ratio() const { return median(realtime_ratio_); }
+  // Simulation samples past the warm-up: none means the medians say nothing.
+  std::size_t simulation_samples() const { return steps_per_second_.size(); }
 
  private:
   static double median(std::vector<double> v);
