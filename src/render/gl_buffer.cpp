@@ -26,4 +26,13 @@ void GlBuffer::upload(const void* data, std::size_t bytes) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
+void vertex_attribute(GLuint slot, const GlBuffer& buffer, int components, int stride_floats,
+                      int offset_floats) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  glVertexAttribPointer(slot, components, GL_FLOAT, GL_FALSE,
+                        GLsizei(stride_floats * sizeof(float)),
+                        reinterpret_cast<const void*>(std::size_t(offset_floats) * sizeof(float)));
+  glEnableVertexAttribArray(slot);
+}
+
 }  // namespace neurocloth

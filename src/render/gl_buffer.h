@@ -35,4 +35,14 @@ class GlBuffer {
   long allocations_ = 0;
 };
 
+// Vertex attribute slots, shared by every shader (see shaders/*.vert).
+namespace vertex_slot {
+constexpr GLuint position = 0, normal = 1, colour = 1, scalar = 2, grid_side = 1;
+}
+
+// Slot `slot` of the bound vertex array reads `components` floats a vertex from
+// `buffer`, `stride_floats` apart, from `offset_floats` on; and is enabled.
+void vertex_attribute(GLuint slot, const GlBuffer& buffer, int components, int stride_floats,
+                      int offset_floats);
+
 }  // namespace neurocloth

@@ -11,18 +11,13 @@
 #include "collider_meshes.h"
 #include "gl_buffer.h"
 #include "gl_program.h"
-#include "ground_grid.h"
+#include "grid_layer.h"
 #include "legend_text.h"
 #include "render_palette.h"
 
 namespace neurocloth {
 namespace {
 
-// Vertex attribute slots, shared by every shader (see shaders/*.vert).
-constexpr GLuint kPosition = 0, kNormal = 1, kColour = 1, kScalar = 2, kGridSide = 1;
-// Grid strips this many cells long: few enough triangles (about 4,000) and
-// short enough that the width grid.vert gives each end covers the line between.
-constexpr int kGridCellsPerSegment = 5;
 constexpr int kOverlayFloats = 7;  // x, y, z, r, g, b, a
 // Plane colliders reach this many grid sizes: to the horizon of any framed view.
 constexpr double kPlaneReach = 25;
@@ -39,15 +34,6 @@ Eigen::Matrix4f pixel_projection(int width, int height) {
   m(1, 1) = -2.0f / float(height);
   m(1, 3) = 1;
   return m;
-}
-
-void attribute(GLuint slot, const GlBuffer& buffer, int components, int stride_floats,
-               int offset_floats) {
-  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
-  glVertexAttribPointer(slot, components, GL_FLOAT, GL_FALSE,
-                        GLsizei(stride_floats * sizeof(float)),
-                        reinterpret_cast<const void*>(std::size_t(offset_floats) * sizeof(float)));
-  glEnableVertexAttribArray(slot);
 }
 
 void check_gl(const char* where) {
@@ -72,17 +58,13 @@ std::string percent_label(double fraction) {
 // the scene's fixed parts (triangles, springs, colliders, grid) are uploaded
 // again only when a snapshot arrives with a different SceneGeometry.
 struct Renderer::Impl {
-  GlProgram surface, lines, grid, legend;
+  GlProgram surface, lines, legend;
   struct {
     GLint view_projection, front, back, use_strain, strain_max, eye, key;
   } su;
   struct {
     GLint view_projection, point_size, round_points;
   } lu;
-  struct {
-    GLint view_projection, cell, origin, minor, major, fade_centre, fade_radius, viewport,
-        max_half_width;
-  } gu;
   GLint legend_viewport;
 
   enum Vao {
@@ -91,7 +73,6 @@ struct Renderer::Impl {
     springs_vao,
     nodes_vao,
     collider_vao,
-    grid_vao,
     overlay_vao,
     ghost_vao,
     legend_vao,
@@ -99,16 +80,14 @@ struct Renderer::Impl {
   };
   GLuint vao[kVaoCount] = {};
   GlBuffer position, normal, strain, triangles, spring_pairs, node_colour;
-  GlBuffer collider_position, collider_normal, collider_index, grid_strips, overlay, legend_quad,
-      ghost;
+  GlBuffer collider_position, collider_normal, collider_index, overlay, legend_quad, ghost;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
   std::size_t triangle_indices = 0;
   std::size_t spring_begin[kSpringFamilyCount + 1] = {};  // index ranges by family
   std::size_t collider_indices = 0;
-  std::size_t grid_vertices = 0;
   bool geometry_uploaded = false;
-  GroundGrid ground;
+  GridLayer grid;
 
   // Per-frame scratch, kept for its storage.
   ClothShading shading;
@@ -117,52 +96,44 @@ struct Renderer::Impl {
   explicit Impl(const std::string& dir)
       : surface(dir, "surface.vert", "surface.frag", {"strain_colour.glsl"}),
         lines(dir, "lines.vert", "lines.frag"),
-        grid(dir, "grid.vert", "grid.frag"),
-        legend(dir, "legend.vert", "legend.frag", {"strain_colour.glsl"}) {
+        legend(dir, "legend.vert", "legend.frag", {"strain_colour.glsl"}),
+        grid(dir) {
     su = {surface.uniform("u_view_projection"), surface.uniform("u_front_colour"),
           surface.uniform("u_back_colour"),     surface.uniform("u_use_strain"),
           surface.uniform("u_strain_max"),      surface.uniform("u_eye"),
           surface.uniform("u_key_direction")};
     lu = {lines.uniform("u_view_projection"), lines.uniform("u_point_size"),
           lines.uniform("u_round_points")};
-    gu = {grid.uniform("u_view_projection"), grid.uniform("u_cell"),
-          grid.uniform("u_origin"),          grid.uniform("u_minor_colour"),
-          grid.uniform("u_major_colour"),    grid.uniform("u_fade_centre"),
-          grid.uniform("u_fade_radius"),     grid.uniform("u_viewport"),
-          grid.uniform("u_max_half_width")};
     legend_viewport = legend.uniform("u_viewport");
     glGenVertexArrays(kVaoCount, vao);
     // Attribute layouts are fixed once: buffers keep their names when they
     // grow, so the vertex arrays stay valid.
     glBindVertexArray(vao[cloth_vao]);
-    attribute(kPosition, position, 3, 3, 0);
-    attribute(kNormal, normal, 3, 3, 0);
-    attribute(kScalar, strain, 1, 1, 0);
+    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
+    vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
+    vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
     glBindVertexArray(vao[wire_vao]);
-    attribute(kPosition, position, 3, 3, 0);
+    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
     glBindVertexArray(vao[springs_vao]);
-    attribute(kPosition, position, 3, 3, 0);
+    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, spring_pairs.id());
     glBindVertexArray(vao[nodes_vao]);
-    attribute(kPosition, position, 3, 3, 0);
-    attribute(kColour, node_colour, 4, 4, 0);
+    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
+    vertex_attribute(vertex_slot::colour, node_colour, 4, 4, 0);
     glBindVertexArray(vao[collider_vao]);
-    attribute(kPosition, collider_position, 3, 3, 0);
-    attribute(kNormal, collider_normal, 3, 3, 0);
+    vertex_attribute(vertex_slot::position, collider_position, 3, 3, 0);
+    vertex_attribute(vertex_slot::normal, collider_normal, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, collider_index.id());
-    glBindVertexArray(vao[grid_vao]);
-    attribute(kPosition, grid_strips, 3, kGridFloatsPerVertex, 0);
-    attribute(kGridSide, grid_strips, 3, kGridFloatsPerVertex, 3);
     glBindVertexArray(vao[overlay_vao]);
-    attribute(kPosition, overlay, 3, kOverlayFloats, 0);
-    attribute(kColour, overlay, 4, kOverlayFloats, 3);
+    vertex_attribute(vertex_slot::position, overlay, 3, kOverlayFloats, 0);
+    vertex_attribute(vertex_slot::colour, overlay, 4, kOverlayFloats, 3);
     glBindVertexArray(vao[ghost_vao]);
-    attribute(kPosition, ghost, 3, 3, 0);
+    vertex_attribute(vertex_slot::position, ghost, 3, 3, 0);
     glBindVertexArray(vao[legend_vao]);
-    attribute(kPosition, legend_quad, 2, 3, 0);
-    attribute(kScalar, legend_quad, 1, 3, 2);
+    vertex_attribute(vertex_slot::position, legend_quad, 2, 3, 0);
+    vertex_attribute(vertex_slot::scalar, legend_quad, 1, 3, 2);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     check_gl("Renderer()");
@@ -174,15 +145,14 @@ struct Renderer::Impl {
     long n = 0;
     for (const GlBuffer* b :
          {&position, &normal, &strain, &triangles, &spring_pairs, &node_colour, &collider_position,
-          &collider_normal, &collider_index, &grid_strips, &overlay, &legend_quad, &ghost})
+          &collider_normal, &collider_index, &overlay, &legend_quad, &ghost})
       n += b->allocations();
-    return n;
+    return n + grid.allocations();
   }
 
   void upload_geometry(const FrameSnapshot& s);
   void upload_frame(const FrameSnapshot& s, const RenderOptions& o);
   void draw_surfaces(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
-  void draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int width, int height);
   void draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s, const RenderOptions& o,
                   int height);
   void draw_legend(const RenderOptions& o, int width, int height);
@@ -221,10 +191,8 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
     spring_begin[kSpringFamilyCount] = pairs.size();
     spring_pairs.upload(pairs);
   }
-  ground = place_ground_grid(s);
-  const std::vector<float> strips = ground_grid_strips(ground, kGridCellsPerSegment);
-  grid_strips.upload(strips);
-  grid_vertices = strips.size() / kGridFloatsPerVertex;
+  grid.place(s);
+  const GroundGrid& ground = grid.ground();
   const SurfaceMesh mesh = collider_mesh(geometry ? geometry->colliders : std::vector<ModuleSpec>(),
                                          ground.centre, kPlaneReach * ground.half_size());
   collider_position.upload(mesh.position);
@@ -274,7 +242,7 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
     set_colour(su.back, palette::kCollider);
     glUniform1i(su.use_strain, 0);
     glBindVertexArray(vao[collider_vao]);
-    glVertexAttrib1f(kScalar, 0);
+    glVertexAttrib1f(vertex_slot::scalar, 0);
     // Pushed back a little so the grid lying on a floor plane is drawn over it.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);
@@ -288,9 +256,9 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
     glBindVertexArray(vao[cloth_vao]);
     // The strain array is only filled when the map is on.
     if (o.strain)
-      glEnableVertexAttribArray(kScalar);
+      glEnableVertexAttribArray(vertex_slot::scalar);
     else
-      glDisableVertexAttribArray(kScalar);
+      glDisableVertexAttribArray(vertex_slot::scalar);
     // Lines drawn on the cloth (wireframe, springs, nodes) must win the depth test.
     const bool overlaid = o.wireframe || o.springs || o.nodes;
     if (overlaid) {
@@ -304,38 +272,6 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-// After the opaque surfaces, blended over them without writing depth, so it
-// shows through nothing and hides nothing.
-void Renderer::Impl::draw_grid(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int width,
-                               int height) {
-  grid.use();
-  glUniformMatrix4fv(gu.view_projection, 1, GL_FALSE, vp.data());
-  glUniform1f(gu.cell, float(ground.cell));
-  glUniform3f(gu.origin, float(ground.centre.x()), float(ground.centre.y()),
-              float(ground.centre.z()));
-  set_colour(gu.minor, palette::kGridMinor);
-  set_colour(gu.major, palette::kGridMajor);
-  // The grid fades out around the point the camera circles.
-  glUniform3f(gu.fade_centre, float(camera.target.x()), float(camera.target.y()),
-              float(camera.target.z()));
-  glUniform1f(gu.fade_radius, float(ground.half_size()));
-  glUniform2f(gu.viewport, float(width), float(height));
-  glUniform1f(gu.max_half_width, float(0.5 * ground.cell));
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  glDepthMask(GL_FALSE);
-  // Where strips cross (and where they are half a cell wide and meet), a pixel
-  // is blended once: the first strip to draw it marks it in the stencil.
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_EQUAL, 0, 0xff);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  glBindVertexArray(vao[grid_vao]);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(grid_vertices));
-  glDisable(GL_STENCIL_TEST);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-}
-
 void Renderer::Impl::draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s,
                                 const RenderOptions& o, int height) {
   lines.use();
@@ -346,7 +282,8 @@ void Renderer::Impl::draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& 
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   if (o.wireframe && triangle_indices > 0) {
     glBindVertexArray(vao[wire_vao]);
-    glVertexAttrib4f(kColour, palette::kWire[0], palette::kWire[1], palette::kWire[2], 0.55f);
+    glVertexAttrib4f(vertex_slot::colour, palette::kWire[0], palette::kWire[1], palette::kWire[2],
+                     0.55f);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDrawElements(GL_TRIANGLES, GLsizei(triangle_indices), GL_UNSIGNED_INT, nullptr);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -355,7 +292,7 @@ void Renderer::Impl::draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& 
     glBindVertexArray(vao[springs_vao]);
     for (int f = 0; f < kSpringFamilyCount; ++f) {
       const palette::Colour& c = palette::kSpring[f];
-      glVertexAttrib4f(kColour, c[0], c[1], c[2], 0.9f);
+      glVertexAttrib4f(vertex_slot::colour, c[0], c[1], c[2], 0.9f);
       const std::size_t count = spring_begin[f + 1] - spring_begin[f];
       if (count > 0)
         glDrawElements(GL_LINES, GLsizei(count), GL_UNSIGNED_INT,
@@ -411,7 +348,7 @@ void Renderer::Impl::draw_ghosts(const Eigen::Matrix4f& vp, const std::vector<fl
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(vao[ghost_vao]);
   const palette::Colour& c = palette::kGhost;
-  glVertexAttrib4f(kColour, c[0], c[1], c[2], 1.0f);
+  glVertexAttrib4f(vertex_slot::colour, c[0], c[1], c[2], 1.0f);
   glDrawArrays(GL_POINTS, 0, GLsizei(points.size() / 3));
   glUniform1i(lu.round_points, 0);
   glEnable(GL_DEPTH_TEST);
@@ -483,7 +420,8 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
 
   const Eigen::Matrix4f vp = camera.projection(double(width) / height) * camera.view();
   m.draw_surfaces(camera, vp, options);
-  if (options.grid) m.draw_grid(camera, vp, width, height);
+  // After the opaque surfaces: blended over them, it shows through nothing.
+  if (options.grid) m.grid.draw(camera, vp, width, height);
   m.draw_lines(vp, snapshot, options, height);
   if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);
