@@ -43,6 +43,7 @@ TEST(AccuracyControl, ARequestBecomesThePickedSettingAsOneCommand) {
     EXPECT_EQ(p.command.adaptive, c.settings.adaptive) << e;
     EXPECT_EQ(p.command.safety, c.settings.adaptive_settings.safety) << e;
     EXPECT_EQ(p.command.iterations, c.settings.iterations) << e;
+    EXPECT_EQ(p.command.linear_tolerance, c.settings.linear_tolerance) << e;
     EXPECT_NE(p.description.find(describe_setting(c.row)), std::string::npos) << p.description;
   }
   // Tighter costs more: the 0.1% pick takes a smaller step than the 10% one.
@@ -77,6 +78,33 @@ TEST(AccuracyControl, AProjectivePickSendsItsIterations) {
       << p.description;
   t.table->rows[0].iterations = 0;
   EXPECT_EQ(pick_for_accuracy(t, 0.05, scene_solver).command.iterations, 7);
+}
+
+// An implicit pick sends its CG tolerance with the rest; an implicit row from a
+// file without the column leaves the scene's own.
+TEST(AccuracyControl, AnImplicitPickSendsItsLinearTolerance) {
+  SolverSettings scene_solver;
+  scene_solver.linear_tolerance = 1e-8;
+  AccuracyTrade t;
+  t.path = "implicit.csv";
+  t.table = TradeTable{};
+  t.table->scene = "hand";
+  t.table->reference.change = 1e-6;
+  TradeRow row;
+  row.method = "implicit_euler";
+  row.parameter = "dt";
+  row.value = row.dt = 1.0 / 256;
+  row.linear_tolerance = 1e-6;
+  row.position_error_max = 0.02;
+  row.wall_per_simulated_second = 0.1;
+  t.table->rows = {row};
+  const AccuracyPick p = pick_for_accuracy(t, 0.05, scene_solver);
+  EXPECT_EQ(p.command.integrator, IntegratorKind::implicit_euler);
+  EXPECT_EQ(p.command.linear_tolerance, 1e-6);
+  EXPECT_NE(p.description.find("implicit_euler tol 1e-6, dt 0.003906 s"), std::string::npos)
+      << p.description;
+  t.table->rows[0].linear_tolerance = 0;
+  EXPECT_EQ(pick_for_accuracy(t, 0.05, scene_solver).command.linear_tolerance, 1e-8);
 }
 
 TEST(AccuracyControl, BeyondWhatTheTradeVouchesForIsRefusedNamingTheFile) {

@@ -232,5 +232,27 @@ TEST(TradeChart, ProjectiveHasALinePerIterationsCount) {
   EXPECT_LE(four.g, cyan.g);
 }
 
+// The implicit step's tolerances too, shaded darker the looser the solve.
+TEST(TradeChart, ImplicitHasALinePerTolerance) {
+  TradeTable t;
+  t.scene = "hand";
+  t.seconds = 2;
+  t.reference.change = 1e-9;
+  t.reference.met = true;
+  t.rows = {row("implicit_euler", 0.3, 0.2), row("implicit_euler", 0.1, 0.21),
+            row("implicit_euler", 0.6, 0.1), row("implicit_euler", 0.2, 0.11)};
+  const double tolerances[] = {1e-10, 1e-3, 1e-10, 1e-3};
+  for (std::size_t i = 0; i < t.rows.size(); ++i)
+    t.rows[i].linear_tolerance = tolerances[i];
+  const ChartSpec spec = trade_chart_spec(t);
+  ASSERT_EQ(spec.series.size(), 2u);
+  EXPECT_EQ(spec.series[0].name, "implicit_euler tol 1e-10");
+  EXPECT_EQ(spec.series[1].name, "implicit_euler tol 0.001");
+  ASSERT_EQ(spec.series[1].points.size(), 2u);
+  const Rgb tight = spec.series[0].colour, loose = spec.series[1].colour;
+  EXPECT_EQ(tight.b, method_colour("implicit_euler").b) << "the scene default at full strength";
+  EXPECT_LT(loose.b, tight.b) << "looser, darker";
+}
+
 }  // namespace
 }  // namespace neurocloth

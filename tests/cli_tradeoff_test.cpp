@@ -156,6 +156,39 @@ TEST_F(Cli, AccuracyPicksAProjectiveRowWithItsIterations) {
   EXPECT_EQ(doc.at("accuracy").at("iterations").get<int>(), 4);
 }
 
+// The implicit row's CG tolerance reaches the run: it solves as a scene asking
+// for that tolerance does, in fewer CG iterations than at the scene's own 1e-10.
+TEST_F(Cli, AccuracyPicksAnImplicitRowWithItsLinearTolerance) {
+  TradeTable t = read_trade_csv(write("base.csv", hand_made_trade()));
+  TradeRow implicit = row("implicit_euler", 0.015625, 0.005, 0.03);
+  implicit.linear_tolerance = 1e-2;
+  t.rows.push_back(implicit);
+  const std::string trade = write("trade.csv", trade_csv(t));
+  const std::vector<std::string> seconds = {"--seconds", "0.25"};
+  Outcome r = run({"simulate", scene_asset("hanging"), seconds[0], seconds[1], "--accuracy", "0.05",
+                   "--trade", trade, "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("picked implicit_euler tol 0.01, dt 0.01562 s"), std::string::npos) << r.out;
+  const json picked = read_result();
+  EXPECT_EQ(picked.at("integrator"), "implicit_euler");
+  EXPECT_EQ(picked.at("accuracy").at("linear_tolerance").get<double>(), 1e-2);
+
+  r = run({"simulate", scene_asset("hanging"), seconds[0], seconds[1], "--integrator",
+           "implicit_euler", "--dt", "0.015625", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const json own = read_result();
+  const std::string loose_scene =
+      write("loose.json", with(read_text(scene_asset("hanging")), "\"adaptive\": false",
+                               "\"adaptive\": false, \"linear_tolerance\": 0.01"));
+  r = run({"simulate", loose_scene, seconds[0], seconds[1], "--integrator", "implicit_euler",
+           "--dt", "0.015625", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const json loose = read_result();
+  EXPECT_EQ(picked.at("cg_iterations"), loose.at("cg_iterations"));
+  EXPECT_EQ(picked.at("positions"), loose.at("positions"));
+  EXPECT_LT(picked.at("cg_iterations").get<long>(), own.at("cg_iterations").get<long>());
+}
+
 TEST_F(Cli, AccuracyUsesTheCommittedTradeOfAShippedScene) {
   const std::string committed = assets_directory() + "/tradeoff/hanging.csv";
   ASSERT_TRUE(fs::exists(committed)) << committed;
@@ -202,6 +235,11 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--projective-iterations", "4,0"});
   expect_input_error(args, {"--projective-iterations", "must be in [1, 1000]"});
+  for (const char* tolerances : {"1e-6,0", "1e-6,0.5", "1e-15"}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {"--implicit-tolerances", tolerances});
+    expect_input_error(args, {"--implicit-tolerances", "must be in [1e-14, 0.01]"});
+  }
   // --size: a grid a side, on a grid scene; --dt: steps that land on every sample time.
   for (const char* size : {"1", "1025"}) {
     args = quick_tradeoff(scene_asset("hanging"), report);

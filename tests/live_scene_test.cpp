@@ -86,7 +86,7 @@ TEST(LiveScene, SolverParametersReachTheSimulation) {
 TEST(LiveScene, ASolverSetAsAWholeReachesTheSimulationOrIsRefused) {
   LiveScene live(test::asset_scene("hanging"));
   const SolverSettings before = live.simulation().settings();
-  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::rk4, 5e-4, false, 0.5, 10}), "");
+  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::rk4, 5e-4, false, 0.5, 10, 1e-10}), "");
   const SolverSettings& s = live.simulation().settings();
   EXPECT_EQ(s.integrator, IntegratorKind::rk4);
   EXPECT_EQ(s.dt, 5e-4);
@@ -94,19 +94,27 @@ TEST(LiveScene, ASolverSetAsAWholeReachesTheSimulationOrIsRefused) {
   EXPECT_EQ(s.adaptive_settings.safety, 0.5);
   EXPECT_EQ(s.substep_above_cap, before.substep_above_cap);
   EXPECT_EQ(s.step_budget, before.step_budget);
-  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::projective, 0.01, false, 0.5, 4}), "");
+  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::projective, 0.01, false, 0.5, 4, 1e-10}), "");
   EXPECT_EQ(live.simulation().settings().integrator, IntegratorKind::projective);
   EXPECT_EQ(live.simulation().settings().iterations, 4);
-  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::network, 0.01, true, 0.25, 10}), "");
+  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::network, 0.01, true, 0.25, 10, 1e-10}), "");
   EXPECT_TRUE(live.simulation().settings().adaptive);
   EXPECT_EQ(live.simulation().settings().adaptive_settings.safety, 0.25);
+  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::implicit_euler, 0.01, false, 0.5, 10, 1e-4}), "");
+  EXPECT_EQ(live.simulation().settings().linear_tolerance, 1e-4);
+  EXPECT_EQ(live.apply(SetSolver{IntegratorKind::network, 0.01, true, 0.25, 10, 1e-10}), "");
 
-  EXPECT_TRUE(contains(live.apply(SetSolver{IntegratorKind::rk4, 0.5, false, 0.5, 10}), "dt"));
-  EXPECT_TRUE(contains(live.apply(SetSolver{IntegratorKind::rk4, 1e-3, true, 0, 10}), "safety"));
-  EXPECT_TRUE(contains(live.apply(SetSolver{IntegratorKind::projective, 1e-3, false, 0.5, 0}),
-                       "iterations"));
+  EXPECT_TRUE(
+      contains(live.apply(SetSolver{IntegratorKind::rk4, 0.5, false, 0.5, 10, 1e-10}), "dt"));
+  EXPECT_TRUE(
+      contains(live.apply(SetSolver{IntegratorKind::rk4, 1e-3, true, 0, 10, 1e-10}), "safety"));
+  EXPECT_TRUE(contains(
+      live.apply(SetSolver{IntegratorKind::projective, 1e-3, false, 0.5, 0, 1e-10}), "iterations"));
+  EXPECT_TRUE(
+      contains(live.apply(SetSolver{IntegratorKind::implicit_euler, 1e-3, false, 0.5, 10, 0.5}),
+               "linear_tolerance"));
   EXPECT_FALSE(
-      live.apply(SetSolver{static_cast<IntegratorKind>(42), 1e-3, false, 0.5, 10}).empty());
+      live.apply(SetSolver{static_cast<IntegratorKind>(42), 1e-3, false, 0.5, 10, 1e-10}).empty());
   EXPECT_EQ(live.simulation().settings().integrator, IntegratorKind::network) << "unchanged";
   EXPECT_EQ(live.simulation().settings().dt, 0.01);
 }

@@ -114,8 +114,11 @@ SimCommand random_command(std::mt19937_64& rng, int nodes, bool lockstep, const 
   if (k < 81) return SetAdaptive{u(rng) < 0.5};
   if (k < 85)
     return SetSolver{static_cast<IntegratorKind>(std::uniform_int_distribution<int>(0, 5)(rng)),
-                     random_value(rng), u(rng) < 0.5, u(rng) < 0.8 ? u(rng) : random_value(rng),
-                     std::uniform_int_distribution<int>(0, 40)(rng)};
+                     random_value(rng),
+                     u(rng) < 0.5,
+                     u(rng) < 0.8 ? u(rng) : random_value(rng),
+                     std::uniform_int_distribution<int>(0, 40)(rng),
+                     u(rng) < 0.8 ? 1e-6 * u(rng) : random_value(rng)};
   if (k < 88) return Reset{};
   if (k < 92) return LoadScene{pick(files.scenes)};
   if (k < 95) return LoadRules{pick(files.rules)};

@@ -2,12 +2,14 @@
 // line, column and field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "asset_paths.h"
 #include "hand_made_trade.h"
@@ -41,6 +43,11 @@ TradeTable csv_table() {
   t.rows[1].steps = 2048;
   t.rows[1].force_evaluations = 4096;
   t.rows[7].rejected_steps = 12;
+  // The implicit step's second knob, swept at each step.
+  TradeRow implicit = test::row("implicit_euler", 0.9, 0.02);
+  implicit.dt = implicit.value = 0.00390625;
+  implicit.linear_tolerance = 1e-6;
+  t.rows.push_back(implicit);
   // Projective's second knob, swept at each step.
   TradeRow projective = test::row("projective", 0.7, 0.03);
   projective.dt = projective.value = 0.015625;
@@ -49,25 +56,40 @@ TradeTable csv_table() {
   return t;
 }
 
-// `text` as files written before projective's iterations were swept: without the
-// iterations column.
-std::string without_iterations_column(const std::string& text) {
+// `text` without the column `name`, header and rows: as files written before
+// that knob was swept.
+std::string without_column(const std::string& text, const std::string& name) {
   std::string out;
-  bool rows = false;
+  std::size_t index = std::string::npos;  // the column's field index, once the header is seen
   for (std::size_t pos = 0; pos < text.size();) {
     const std::size_t eol = text.find('\n', pos);
-    std::string line = text.substr(pos, eol - pos);
+    const std::string line = text.substr(pos, eol - pos);
     pos = eol + 1;
-    if (line.rfind("method,", 0) == 0) rows = true;
-    if (rows) {  // the fifth field goes, with the comma before it
-      std::size_t comma = 0;
-      for (int k = 0; k < 4; ++k)
-        comma = line.find(',', comma + 1);
-      line.erase(comma, line.find(',', comma + 1) - comma);
+    std::vector<std::string> fields;
+    for (std::size_t at = 0;;) {
+      const std::size_t comma = line.find(',', at);
+      fields.push_back(line.substr(at, comma - at));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
     }
-    out += line + "\n";
+    if (line.rfind("method,", 0) == 0)
+      index =
+          static_cast<std::size_t>(std::find(fields.begin(), fields.end(), name) - fields.begin());
+    if (index == std::string::npos || line.empty() || line[0] == '#') {
+      out += line + "\n";
+      continue;
+    }
+    fields.erase(fields.begin() + static_cast<std::ptrdiff_t>(index));
+    for (std::size_t k = 0; k < fields.size(); ++k)
+      out += (k ? "," : "") + fields[k];
+    out += "\n";
   }
   return out;
+}
+
+// As files written before either second knob was swept (the committed trades).
+std::string without_knob_columns(const std::string& text) {
+  return without_column(without_column(text, "linear_tolerance"), "iterations");
 }
 
 TEST(TradeoffCsv, RoundTrips) {
@@ -96,6 +118,7 @@ TEST(TradeoffCsv, RoundTrips) {
     EXPECT_EQ(b.value, a.value);
     EXPECT_EQ(b.dt, a.dt);
     EXPECT_EQ(b.iterations, a.iterations);
+    EXPECT_EQ(b.linear_tolerance, a.linear_tolerance);
     EXPECT_EQ(b.steps, a.steps);
     EXPECT_EQ(b.status, a.status);
     EXPECT_EQ(b.force_evaluations, a.force_evaluations);
@@ -158,17 +181,17 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
       {"a safety above 1", "adaptive,", "0.25", "1.5", "value", "1.5", "(0, 1]"},
       {"a negative step", "network,", "0.001,0.001", "0.001,-0.001", "dt", "-0.001", "must be > 0"},
       {"a fraction of a step count", "network,", ",0,", ",1.5,", "steps", "1.5", "whole number"},
-      {"no error on a finished run", "rk4,dt,0.001,0.001,,0,0.05", "0.05", "nan",
+      {"no error on a finished run", "rk4,dt,0.001,0.001,,,0,0.05", "0.05", "nan",
        "position_error_max", "nan", "not a finite number"},
       {"more samples than an int holds", "# samples", "8", "4294967304", "# samples", "4294967304",
        "must be at most 1000"},
       {"a step below the floor", "network,", "0.001,0.001", "0.001,1e-12", "dt", "1e-12",
        "microsecond"},
-      {"an unknown status", "rk4,dt,0.001,0.001,,0,0.05", ",ok", ",fine", "status", "fine",
+      {"an unknown status", "rk4,dt,0.001,0.001,,,0,0.05", ",ok", ",fine", "status", "fine",
        "must be ok, diverged or stopped"},
-      {"a missing field", "network,", ",0,ok", ",ok", "status", "", "expected 13 fields, found 12"},
+      {"a missing field", "network,", ",0,ok", ",ok", "status", "", "expected 14 fields, found 13"},
       {"a misspelt column", "method,", "position_error_rms", "position_error_rsm", "header",
-       "position_error_rsm", "column 8 must be 'position_error_rms'"},
+       "position_error_rsm", "column 9 must be 'position_error_rms'"},
       {"iterations that are not a count", "projective,", ",4,", ",4.5,", "iterations", "4.5",
        "not a whole number >= 0: '4.5'"},
       {"no iterations", "projective,", ",4,", ",0,", "iterations", "0,", "must be in [1, 1000]"},
@@ -177,7 +200,15 @@ TEST(TradeoffCsv, BrokenFilesNameFileLineColumnAndField) {
       {"iterations for a method that does not iterate", "verlet,", "0.0009765625,,",
        "0.0009765625,3,", "iterations", "3,", "must be empty for verlet"},
       {"a misspelt optional column", "method,", "iterations", "iterashuns", "header", "iterashuns",
-       "column 5 must be 'iterations' or 'steps', got 'iterashuns'"},
+       "column 5 must be 'iterations' or 'linear_tolerance' or 'steps', got 'iterashuns'"},
+      {"a tolerance that is not a number", "implicit_euler,dt,0.0039", ",1e-06,", ",1e-6x,",
+       "linear_tolerance", "1e-6x", "not a finite number: '1e-6x'"},
+      {"a tolerance of 0", "implicit_euler,dt,0.0039", ",1e-06,", ",0,", "linear_tolerance", "0,",
+       "must be > 0"},
+      {"too loose a tolerance", "implicit_euler,dt,0.0039", ",1e-06,", ",0.5,", "linear_tolerance",
+       "0.5", "must be in [1e-14, 0.01]"},
+      {"a tolerance for a method that solves no system", "verlet,", "0.0009765625,,,",
+       "0.0009765625,,1e-6,", "linear_tolerance", "1e-6", "must be empty for verlet"},
       {"a bad metadata value", "# seconds", "2", "two", "# seconds", "two", "not a finite number"},
       {"a grid without its x", "# grid", "32x32", "32by32", "# grid", "32by32", "ROWSxCOLS"},
       {"a grid of one node a side", "# grid", "32x32", "1x32", "# grid", "1x32", "at least 2"},
@@ -230,7 +261,7 @@ TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
     }
 
   // Empty is "not measured" only where a run did not finish.
-  const int finished = line_of(text, "rk4,dt,0.001,0.001,,0,0.05");
+  const int finished = line_of(text, "rk4,dt,0.001,0.001,,,0,0.05");
   const auto e = csv_error(edit_line(text, finished, "0.05,", ","));
   ASSERT_TRUE(e);
   EXPECT_EQ(e->line(), finished);
@@ -238,7 +269,7 @@ TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
   EXPECT_NE(e->message().find("not a finite number: ''"), std::string::npos) << e->what();
 
   // As files written before 2026-12 say it: "nan", and no iterations column.
-  std::string legacy = without_iterations_column(text);
+  std::string legacy = without_knob_columns(text);
   for (std::size_t at; (at = legacy.find(",,")) != std::string::npos;)
     legacy.replace(at, 2, ",nan,");
   for (std::size_t at; (at = legacy.find(": none\n")) != std::string::npos;)
@@ -249,7 +280,7 @@ TEST(TradeoffCsv, WritesNoNaNOrInfinity) {
     if (!t.rows[i].ok()) {
       EXPECT_TRUE(std::isnan(legacy_back.rows[i].position_error_max)) << i;
     }
-  EXPECT_EQ(without_iterations_column(trade_csv(legacy_back)), without_iterations_column(text));
+  EXPECT_EQ(without_knob_columns(trade_csv(legacy_back)), without_knob_columns(text));
 }
 
 // A measurement has one scene, one duration...: a second value for a key
@@ -318,34 +349,64 @@ TEST(TradeoffCsv, AcceptsWindowsLineEndsAndPeoplesComments) {
 
 TEST(TradeoffCsv, ProjectiveRowsKeepTheirIterations) {
   const std::string text = trade_csv(csv_table());
-  EXPECT_NE(text.find("\nmethod,parameter,value,dt,iterations,steps,"), std::string::npos) << text;
-  EXPECT_NE(text.find("\nprojective,dt,0.015625,0.015625,4,0,"), std::string::npos) << text;
-  EXPECT_NE(text.find("\nverlet,dt,0.0009765625,0.0009765625,,2048,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nmethod,parameter,value,dt,iterations,linear_tolerance,steps,"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\nprojective,dt,0.015625,0.015625,4,,0,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nverlet,dt,0.0009765625,0.0009765625,,,2048,"), std::string::npos) << text;
   const TradeTable back = parse_trade_csv(text, "x.csv");
   EXPECT_EQ(back.rows.back().iterations, 4);
   EXPECT_EQ(settings_for(back.rows.back(), SolverSettings{}).iterations, 4);
   EXPECT_EQ(describe_setting(back.rows.back()), "projective 4 it., dt 0.01562 s");
 }
 
+// The tolerance is written as the shortest text that reads back as the same
+// double, and a picked implicit row runs at it.
+TEST(TradeoffCsv, ImplicitRowsKeepTheirLinearTolerance) {
+  const std::string text = trade_csv(csv_table());
+  EXPECT_NE(text.find("\nimplicit_euler,dt,0.00390625,0.00390625,,1e-06,0,"), std::string::npos)
+      << text;
+  const TradeTable back = parse_trade_csv(text, "x.csv");
+  const TradeRow& implicit = back.rows[back.rows.size() - 2];
+  ASSERT_EQ(implicit.method, "implicit_euler");
+  EXPECT_EQ(implicit.linear_tolerance, 1e-6);
+  EXPECT_EQ(settings_for(implicit, SolverSettings{}).linear_tolerance, 1e-6);
+  EXPECT_EQ(describe_setting(implicit), "implicit_euler tol 1e-6, dt 0.003906 s");
+  // Only implicit_euler solves a linear system: a tolerance elsewhere is refused.
+  TradeRow verlet = back.rows[1];
+  verlet.linear_tolerance = 1e-6;
+  EXPECT_THROW(settings_for(verlet, SolverSettings{}), std::invalid_argument);
+}
+
 // Files written before the column (the committed trades among them) still read:
 // every row's iterations is 0, and a projective row runs at the scene's own.
 TEST(TradeoffCsv, AFileWithoutTheIterationsColumnReads) {
-  const std::string old = without_iterations_column(trade_csv(csv_table()));
+  const std::string old = without_knob_columns(trade_csv(csv_table()));
   ASSERT_NE(old.find("\nmethod,parameter,value,dt,steps,"), std::string::npos) << old;
   const TradeTable back = parse_trade_csv(old, "old.csv");
   ASSERT_EQ(back.rows.size(), csv_table().rows.size());
-  for (const TradeRow& r : back.rows)
+  for (const TradeRow& r : back.rows) {
     EXPECT_EQ(r.iterations, 0) << describe_setting(r);
+    EXPECT_EQ(r.linear_tolerance, 0) << describe_setting(r);
+  }
   EXPECT_EQ(back.rows[1].steps, 2048) << "the columns after it are where they were";
   SolverSettings scene;
   scene.iterations = 12;
   const SolverSettings s = settings_for(back.rows.back(), scene);
   EXPECT_EQ(s.integrator, IntegratorKind::projective);
   EXPECT_EQ(s.iterations, 12);
-  // Written again, the column is there and the projective row's field is empty
-  // (the scene's own): that reads too.
+  // An implicit row runs at the scene's own tolerance.
+  SolverSettings implicit_scene;
+  implicit_scene.linear_tolerance = 1e-8;
+  const TradeRow& implicit = back.rows[back.rows.size() - 2];
+  ASSERT_EQ(implicit.method, "implicit_euler");
+  EXPECT_EQ(settings_for(implicit, implicit_scene).linear_tolerance, 1e-8);
+  EXPECT_EQ(settings_for(implicit, SolverSettings{}).linear_tolerance, 1e-10);
+  EXPECT_EQ(describe_setting(implicit), "implicit_euler, dt 0.003906 s");
+  // Written again, the columns are there and the knob fields are empty (the
+  // scene's own): that reads too.
   const std::string again = trade_csv(back);
-  EXPECT_NE(again.find("\nprojective,dt,0.015625,0.015625,,0,"), std::string::npos) << again;
+  EXPECT_NE(again.find("\nprojective,dt,0.015625,0.015625,,,0,"), std::string::npos) << again;
   EXPECT_EQ(trade_csv(parse_trade_csv(again, "again.csv")), again);
   // A missing field is named after the file's own columns.
   const int line = line_of(old, "network,");

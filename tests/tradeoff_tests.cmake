@@ -1,6 +1,6 @@
 # Speed against accuracy: the tradeoff sweep, its chart and the accuracy picker.
 add_executable(tradeoff_tests tradeoff_test.cpp trade_csv_test.cpp chart_test.cpp
-  projective_trade_test.cpp)
+  projective_trade_test.cpp implicit_trade_test.cpp)
 target_link_libraries(tradeoff_tests PRIVATE neurocloth_core neurocloth_chart PkgConfig::CAIRO
   GTest::gtest_main)
 target_compile_definitions(tradeoff_tests PRIVATE NEUROCLOTH_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tmp")

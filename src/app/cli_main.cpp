@@ -85,6 +85,11 @@ int main(int argc, char** argv) {
       ->add_option("--projective-iterations", trade.projective_iterations,
                    "Projective's iterations per step, each run at every step (default 1,2,4,10,30)")
       ->delimiter(',');
+  tradeoff
+      ->add_option("--implicit-tolerances", trade.implicit_tolerances,
+                   "implicit_euler's CG tolerances (relative residual), each run at every step "
+                   "(default 1e-10,1e-6,1e-3)")
+      ->delimiter(',');
   tradeoff->add_option("--size", trade.size,
                        "Measure the scene's cloth resized to N x N (as the window's --size)");
   tradeoff

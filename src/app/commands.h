@@ -61,11 +61,12 @@ struct TradeoffOptions {
   double seconds = 2;
   std::string out;  // REPORT: the three files' common path without extension
   int samples = 8;
-  double reference_budget = 20;            // wall seconds for the RK4 reference's halvings
-  double method_budget = 8;                // wall seconds per method's sweep
-  int levels = 7;                          // settings per method at most
-  std::vector<std::string> methods;        // empty: all
-  std::vector<int> projective_iterations;  // empty: the sweep's own grid
+  double reference_budget = 20;             // wall seconds for the RK4 reference's halvings
+  double method_budget = 8;                 // wall seconds per method's sweep
+  int levels = 7;                           // settings per method at most
+  std::vector<std::string> methods;         // empty: all
+  std::vector<int> projective_iterations;   // empty: the sweep's own grid
+  std::vector<double> implicit_tolerances;  // empty: the sweep's own grid
   // --size N: the scene's cloth resized to N x N (resized_grid), as the window's
   // --size runs it; the trade then holds at that size only.
   std::optional<int> size;

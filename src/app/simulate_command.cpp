@@ -24,6 +24,7 @@ struct AccuracyPick {
   double trade_seconds = 0;
   TradeRow row;
   int iterations = 0;  // projective: the iterations per step it runs at (the row's or the scene's)
+  double linear_tolerance = 0;  // implicit_euler: its CG tolerance (the row's or the scene's)
 };
 
 // The trade to pick from: --trade, else the committed one, else measured now.
@@ -68,6 +69,8 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
   scene.solver.precision = SpringPrecision::float64;
   pick.row = c.row;
   if (c.settings.integrator == IntegratorKind::projective) pick.iterations = c.settings.iterations;
+  if (c.settings.integrator == IntegratorKind::implicit_euler)
+    pick.linear_tolerance = c.settings.linear_tolerance;
   pick.trade_seconds = trade.seconds;
   std::printf(
       "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s wall "
@@ -96,6 +99,7 @@ nlohmann::json accuracy_json(const AccuracyPick& p) {
                       {"measured_position_error_rms", p.row.position_error_rms},
                       {"measured_wall_per_simulated_second", p.row.wall_per_simulated_second}};
   if (p.iterations > 0) j["iterations"] = p.iterations;
+  if (p.linear_tolerance > 0) j["linear_tolerance"] = p.linear_tolerance;
   return j;
 }
 

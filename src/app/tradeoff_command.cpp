@@ -79,6 +79,10 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   for (int i : o.projective_iterations)
     if (!limits::kIterations.contains(i))
       throw InputError("command line", "--projective-iterations", limits::kIterations.refusal(i));
+  for (double t : o.implicit_tolerances)
+    if (!limits::kLinearTolerance.contains(t))
+      throw InputError("command line", "--implicit-tolerances",
+                       limits::kLinearTolerance.refusal(t));
   if (o.size && !limits::kGridSize.contains(*o.size))
     throw InputError("command line", "--size", limits::kGridSize.refusal(*o.size));
   TradeoffPlan plan;
@@ -91,6 +95,7 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
     plan.steps.push_back(*dt);
   }
   if (!o.projective_iterations.empty()) plan.projective_iterations = o.projective_iterations;
+  if (!o.implicit_tolerances.empty()) plan.implicit_tolerances = o.implicit_tolerances;
   plan.seconds = o.seconds;
   plan.samples = o.samples;
   plan.reference.budget_seconds = o.reference_budget;

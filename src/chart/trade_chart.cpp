@@ -22,11 +22,16 @@ Rgb method_colour(const std::string& method) {
 
 Rgb line_colour(const TradeRow& row) {
   const Rgb c = method_colour(row.method);
-  if (row.iterations == 0) return c;
-  // Projective's lines in its cyan, darker the fewer iterations: 1 at 40%, 30
-  // and more at full strength, log-spaced between.
-  const double shade =
-      0.4 + 0.6 * std::min(1.0, std::log(static_cast<double>(row.iterations)) / std::log(30.0));
+  double shade = 1;
+  if (row.iterations != 0)
+    // Projective's lines in its cyan, darker the fewer iterations: 1 at 40%, 30
+    // and more at full strength, log-spaced between.
+    shade =
+        0.4 + 0.6 * std::min(1.0, std::log(static_cast<double>(row.iterations)) / std::log(30.0));
+  else if (row.linear_tolerance != 0)
+    // The implicit step's in its purple, darker the looser the solve: 0.01 at
+    // 40%, 1e-10 and tighter at full strength, log-spaced between.
+    shade = 0.4 + 0.6 * std::clamp((-2 - std::log10(row.linear_tolerance)) / 8, 0.0, 1.0);
   return {c.r * shade, c.g * shade, c.b * shade};
 }
 

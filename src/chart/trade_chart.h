@@ -13,7 +13,8 @@ namespace neurocloth {
 
 // Each method's colour, the same in every chart (black is the Pareto front's).
 Rgb method_colour(const std::string& method);
-// A row's line: its method's colour (projective's shaded by its iterations).
+// A row's line: its method's colour (projective's shaded by its iterations,
+// implicit_euler's by its CG tolerance).
 Rgb line_colour(const TradeRow& row);
 
 ChartSpec trade_chart_spec(const TradeTable& trade);

@@ -225,6 +225,7 @@ std::string LiveScene::on(const SetSolver& c) {
   s.adaptive = c.adaptive;
   s.adaptive_settings.safety = c.safety;
   s.iterations = c.iterations;
+  s.linear_tolerance = c.linear_tolerance;
   try {
     validate(s);
   } catch (const std::exception& e) {

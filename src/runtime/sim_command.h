@@ -41,11 +41,14 @@ struct SetSolver {
   bool adaptive;   // the paper's propagation (network integrator)
   double safety;   // adaptive: t_c <= safety * stable step bound
   int iterations;  // projective: local-global iterations per step (ignored by the others)
+  // implicit_euler: its conjugate gradient's relative residual (ignored by the others)
+  double linear_tolerance;
 };
 // The command that asks for `s` as a whole: the one place solver settings
 // become a SetSolver (the accuracy slider's pick, the scene's own solver back).
 inline SetSolver solver_command(const SolverSettings& s) {
-  return SetSolver{s.integrator, s.dt, s.adaptive, s.adaptive_settings.safety, s.iterations};
+  return SetSolver{s.integrator,      s.dt, s.adaptive, s.adaptive_settings.safety, s.iterations,
+                   s.linear_tolerance};
 }
 // Pulls node `node` with `force` (N) towards `anchor` (drawn as a line) until released.
 struct ApplyForce {

@@ -65,7 +65,8 @@ void realtime_pick(PanelContext& ctx) {
   ImGui::TextWrapped("%s", pick->note.c_str());
   if (ImGui::Button("use the scene's own solver")) {
     const SolverSettings& own = pick->own;
-    ctx.post(solver_command(own));  // its iterations too: the pick changed them
+    ctx.post(
+        solver_command(own));  // its iterations and tolerance too: the pick may have changed them
     UiValues& v = ctx.values;
     for (std::size_t i = 0; i < std::size(kAllIntegrators); ++i)
       if (kAllIntegrators[i] == own.integrator) v.integrator = static_cast<int>(i);

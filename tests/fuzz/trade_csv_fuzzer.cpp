@@ -2,7 +2,8 @@
 // finite measurements (NaN only where the format says so: the errors of a run
 // that did not finish, and an unmeasured reference change, read as -1), and
 // settings whose step can be run: 1/dt finite, projective's iterations in
-// [1, 1000] (none for the other methods), and the counts it was written
+// [1, 1000] (none for the other methods), the implicit step's tolerance in
+// [1e-14, 0.01] (none for the others), and the counts it was written
 // (not truncated to an int), each "# key" written once.
 #include <algorithm>
 #include <cerrno>
@@ -57,6 +58,13 @@ void check_trade(const Contract& c, const TradeTable& t) {
         row.iterations == 0 ||
             (row.method == "projective" && row.iterations >= 1 && row.iterations <= 1000),
         f + "iterations accepted as " + std::to_string(row.iterations) + " for " + row.method);
+    // Only implicit_euler solves, and a picked row runs at its tolerance: one a scene could ask
+    // for.
+    c.require(
+        row.linear_tolerance == 0 ||
+            (row.method == "implicit_euler" && row.linear_tolerance >= 1e-14 &&
+             row.linear_tolerance <= 1e-2),
+        f + "linear_tolerance accepted as " + show(row.linear_tolerance) + " for " + row.method);
     for (double v : {row.position_error_max, row.position_error_rms, row.energy_error,
                      row.wall_per_simulated_second})
       c.require(std::isfinite(v) || (std::isnan(v) && !row.ok()),

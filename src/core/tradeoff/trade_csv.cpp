@@ -28,6 +28,19 @@ std::string iterations_field(int iterations) {
   return iterations > 0 ? std::to_string(iterations) : "";
 }
 
+// The implicit step's tolerance as the shortest text that reads back as the
+// same double (1e-06, not 9.9999999999999995e-07), or an empty field for the
+// other methods (and for an implicit row read from a file without the column).
+std::string tolerance_field(double tolerance) {
+  if (tolerance == 0) return "";
+  char s[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(s, sizeof s, "%.*g", digits, tolerance);
+    if (std::strtod(s, nullptr) == tolerance) break;
+  }
+  return s;
+}
+
 // "Not measured" (a run that did not finish, a reference never compared) is an
 // empty field: a file of ours never holds NaN or Inf where a number belongs.
 std::string number(double v, int digits) {
@@ -144,7 +157,8 @@ std::string trade_csv(const TradeTable& t) {
   s << "\n";
   for (const TradeRow& row : t.rows)
     s << row.method << ',' << row.parameter << ',' << number(row.value, 17) << ','
-      << number(row.dt, 17) << ',' << iterations_field(row.iterations) << ',' << row.steps << ','
+      << number(row.dt, 17) << ',' << iterations_field(row.iterations) << ','
+      << tolerance_field(row.linear_tolerance) << ',' << row.steps << ','
       << number(row.position_error_max, 6) << ',' << number(row.position_error_rms, 6) << ','
       << number(row.energy_error, 6) << ',' << number(row.wall_per_simulated_second, 6) << ','
       << row.force_evaluations << ',' << row.rejected_steps << ',' << row.status << "\n";
@@ -277,10 +291,15 @@ class TradeCsvParser {
       in_.fail(field, "a grid has at least 2 nodes a side, got '" + v.text + "'", line_, v.column);
   }
 
-  // The columns must come in kTradeColumns' order; only the optional one may be missing.
+  static bool optional(const std::string& name) {
+    return std::find(std::begin(kOptionalTradeColumns), std::end(kOptionalTradeColumns), name) !=
+           std::end(kOptionalTradeColumns);
+  }
+
+  // The columns must come in kTradeColumns' order; only the optional ones may be missing.
   void header(const std::vector<Field>& f, const std::string& text) {
     std::size_t at = 0;
-    std::string skipped;  // the optional column, when it was not where it could be
+    std::string skipped;  // the optional columns that could have stood where `at` is
     for (std::size_t c = 0; c < kColumns; ++c) {
       const std::string name = kTradeColumns[c];
       if (at < f.size() && f[at].text == name) {
@@ -288,14 +307,13 @@ class TradeCsvParser {
         skipped.clear();
         continue;
       }
-      if (name == kOptionalTradeColumn) {
-        skipped = name;
+      if (optional(name)) {
+        skipped += "'" + name + "' or ";
         continue;
       }
       in_.fail("header",
-               "column " + std::to_string(at + 1) + " must be " +
-                   (skipped.empty() ? "" : "'" + skipped + "' or ") + "'" + name + "', got '" +
-                   (at < f.size() ? f[at].text : std::string()) + "'",
+               "column " + std::to_string(at + 1) + " must be " + skipped + "'" + name +
+                   "', got '" + (at < f.size() ? f[at].text : std::string()) + "'",
                line_, at < f.size() ? f[at].column : static_cast<int>(text.size()) + 1);
     }
     if (f.size() != at)
@@ -353,21 +371,37 @@ class TradeCsvParser {
     if (!adaptive && r.value != r.dt)
       in_.fail("value", "must equal dt for a fixed step, got " + f[2].text, line_, f[2].column);
     r.iterations = iterations(f[4], r.method);
-    r.steps = in_.count(f[5], "steps", line_);
-    r.status = f[12].text;
+    r.linear_tolerance = tolerance(f[5], r.method);
+    r.steps = in_.count(f[6], "steps", line_);
+    r.status = f[13].text;
     if (r.status != "ok" && r.status != "diverged" && r.status != "stopped")
       in_.fail("status", "must be ok, diverged or stopped, got '" + r.status + "'", line_,
-               f[12].column);
+               f[13].column);
     // A run that did not finish has no error to measure (an empty field).
     const bool nan_ok = !r.ok();
-    r.position_error_max = in_.real(f[6], "position_error_max", line_, 0, false, nan_ok);
-    r.position_error_rms = in_.real(f[7], "position_error_rms", line_, 0, false, nan_ok);
-    r.energy_error = in_.real(f[8], "energy_error", line_, 0, false, nan_ok);
+    r.position_error_max = in_.real(f[7], "position_error_max", line_, 0, false, nan_ok);
+    r.position_error_rms = in_.real(f[8], "position_error_rms", line_, 0, false, nan_ok);
+    r.energy_error = in_.real(f[9], "energy_error", line_, 0, false, nan_ok);
     r.wall_per_simulated_second =
-        in_.real(f[9], "wall_per_simulated_second", line_, 0, false, nan_ok);
-    r.force_evaluations = in_.count(f[10], "force_evaluations", line_);
-    r.rejected_steps = in_.count(f[11], "rejected_steps", line_);
+        in_.real(f[10], "wall_per_simulated_second", line_, 0, false, nan_ok);
+    r.force_evaluations = in_.count(f[11], "force_evaluations", line_);
+    r.rejected_steps = in_.count(f[12], "rejected_steps", line_);
     return r;
+  }
+
+  // The implicit step's tolerance: one a scene could ask for, or empty (a file
+  // without the column: the scene's own). The other methods solve no linear
+  // system: empty.
+  double tolerance(const Field& f, const std::string& method) const {
+    if (f.text.empty()) return 0;
+    if (method != to_string(IntegratorKind::implicit_euler))
+      in_.fail("linear_tolerance",
+               "must be empty for " + method + " (only implicit_euler solves), got " + f.text,
+               line_, f.column);
+    const double v = in_.real(f, "linear_tolerance", line_, 0, true);
+    if (!limits::kLinearTolerance.contains(v))
+      in_.fail("linear_tolerance", limits::kLinearTolerance.refusal(v), line_, f.column);
+    return v;
   }
 
   // Projective's iterations per step: a count a scene could ask for, or empty (a

@@ -9,13 +9,15 @@
 
 namespace neurocloth {
 
-// The columns, in order. `iterations` may be absent (files written before
-// projective's iterations were swept): its rows then read as iterations 0.
+// The columns, in order. `iterations` and `linear_tolerance` may be absent
+// (files written before projective's iterations, or the implicit step's
+// tolerance, were swept): their rows then read as 0, the scene's own setting.
 inline constexpr const char* kTradeColumns[] = {"method",
                                                 "parameter",
                                                 "value",
                                                 "dt",
                                                 "iterations",
+                                                "linear_tolerance",
                                                 "steps",
                                                 "position_error_max",
                                                 "position_error_rms",
@@ -25,7 +27,7 @@ inline constexpr const char* kTradeColumns[] = {"method",
                                                 "rejected_steps",
                                                 "status"};
 
-inline constexpr const char* kOptionalTradeColumn = "iterations";
+inline constexpr const char* kOptionalTradeColumns[] = {"iterations", "linear_tolerance"};
 
 // The "# key: value" lines that describe the measurement, each at most once
 // (sweep_stopped_by, one per stopped sweep, may repeat).

@@ -22,16 +22,33 @@ SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
       throw std::invalid_argument(row.method + " takes no iterations (only projective iterates)");
     base.iterations = row.iterations;
   }
+  if (row.linear_tolerance != 0) {
+    if (*kind != IntegratorKind::implicit_euler)
+      throw std::invalid_argument(row.method +
+                                  " takes no linear tolerance (only implicit_euler solves)");
+    base.linear_tolerance = row.linear_tolerance;
+  }
   return base;
 }
 
-std::string line_name(const std::string& method, int iterations) {
-  if (iterations == 0) return method;
-  return method + " " + std::to_string(iterations) + " it.";
+namespace {
+
+// "1e-6" rather than printf's "1e-06": the tolerance as a person writes it.
+std::string short_number(double v) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%.3g", v);
+  std::string t = s;
+  const std::size_t e = t.find("e-0");
+  if (e != std::string::npos) t.erase(e + 2, 1);
+  return t;
 }
 
+}  // namespace
+
 std::string line_name(const TradeRow& row) {
-  return line_name(row.method, row.iterations);
+  if (row.iterations != 0) return row.method + " " + std::to_string(row.iterations) + " it.";
+  if (row.linear_tolerance != 0) return row.method + " tol " + short_number(row.linear_tolerance);
+  return row.method;
 }
 
 std::string describe_setting(const TradeRow& row) {

@@ -25,6 +25,11 @@ struct TradeRow {
   // projective row of a file without the column (it then runs at the scene's own
   // solver.iterations, as it was measured).
   int iterations = 0;
+  // The implicit step's conjugate-gradient tolerance (relative residual): its
+  // accuracy knob besides dt, swept at each step. 0 for every other method, and
+  // for an implicit_euler row of a file without the column (it then runs at the
+  // scene's own solver.linear_tolerance, as it was measured).
+  double linear_tolerance = 0;
   long steps = 0;
   // Relative to the cloth's size (positions) and to the energy scale (run_error.h);
   // NaN when the run did not finish (nothing to compare).
@@ -59,13 +64,14 @@ struct TradeTable {
 // The solver settings a row stands for, on top of the scene's own (`base`): the
 // one place a row becomes settings (`simulate --accuracy`, the viewer's slider).
 // Throws std::invalid_argument for a method that is neither an integrator nor
-// adaptive, or iterations on a method that does not iterate.
+// adaptive, iterations on a method that does not iterate, or a linear tolerance
+// on one that solves no linear system.
 SolverSettings settings_for(const TradeRow& row, SolverSettings base);
-// The line a row belongs to on the chart: its method, or "projective 4 it.".
-std::string line_name(const std::string& method, int iterations);
+// The line a row belongs to on the chart: its method, "projective 4 it." or
+// "implicit_euler tol 1e-6".
 std::string line_name(const TradeRow& row);
-// "rk4, dt 0.000488 s", "projective 4 it., dt 0.0156 s" or
-// "adaptive, safety 0.25 (t_delta 0.04 s)".
+// "rk4, dt 0.000488 s", "projective 4 it., dt 0.0156 s",
+// "implicit_euler tol 1e-6, dt 0.0039 s" or "adaptive, safety 0.25 (t_delta 0.04 s)".
 std::string describe_setting(const TradeRow& row);
 
 }  // namespace neurocloth

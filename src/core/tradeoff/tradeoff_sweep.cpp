@@ -18,6 +18,8 @@ TradeRow row_from(const SampledRun& run, const SampledRun& reference, const Erro
                   std::size_t samples) {
   TradeRow row;
   row.dt = run.settings.dt;
+  if (run.settings.integrator == IntegratorKind::implicit_euler)
+    row.linear_tolerance = run.settings.linear_tolerance;
   row.steps = run.steps;
   row.force_evaluations = run.force_evaluations;
   row.rejected_steps = run.rejected_steps;
@@ -187,34 +189,56 @@ struct Sweep {
     return true;
   }
 
-  // Projective has two knobs: at each step it tries (halved as for the others),
-  // every iterations count of the plan's grid whose line is still going. The
-  // lines stop on their accuracy one by one, and on the method's one budget
-  // together: the next step's runs, predicted at twice this step's, must fit.
+  // Projective has two knobs: its step and its iterations per step.
   void projective() {
-    SolverSettings s = scene.solver;
-    s.integrator = IntegratorKind::projective;
-    s.adaptive = false;
+    std::vector<SolverSettings> lines;
+    for (int iterations : plan.projective_iterations) {
+      lines.push_back(scene.solver);
+      lines.back().iterations = iterations;
+    }
+    two_knobs(IntegratorKind::projective, lines);
+  }
+
+  // So has the implicit step: its step and its conjugate-gradient tolerance.
+  void implicit() {
+    std::vector<SolverSettings> lines;
+    for (double tolerance : plan.implicit_tolerances) {
+      lines.push_back(scene.solver);
+      lines.back().linear_tolerance = tolerance;
+    }
+    two_knobs(IntegratorKind::implicit_euler, lines);
+  }
+
+  // A method with a second knob: one line per setting of it (`lines`, the
+  // scene's solver with that knob set). At each step it tries (halved as for the
+  // others), every line still going runs. The lines stop on their accuracy one
+  // by one, and on the method's one budget together: the next step's runs,
+  // predicted at twice this step's, must fit.
+  void two_knobs(IntegratorKind kind, std::vector<SolverSettings> going) {
+    const std::string method = to_string(kind);
+    for (SolverSettings& s : going) {
+      s.integrator = kind;
+      s.adaptive = false;
+    }
     if (!plan.steps.empty()) {
       for (double dt : plan.steps)
-        for (int iterations : plan.projective_iterations) {
+        for (SolverSettings s : going) {
           s.dt = dt;
-          s.iterations = iterations;
           SampledRun run;
-          run_row(s, to_string(s.integrator), "dt", dt, run);
+          run_row(s, method, "dt", dt, run);
         }
       return;
     }
-    s.dt = first_step(scene, s.integrator, plan.seconds / plan.samples);
-    std::vector<int> going = plan.projective_iterations;
+    double dt = first_step(scene, kind, plan.seconds / plan.samples);
     double method_wall = 0;
     for (int level = 1; !going.empty(); ++level) {
       double next = 0;
-      std::vector<int> still;
-      for (int iterations : going) {
-        s.iterations = iterations;
+      std::vector<SolverSettings> still;
+      std::vector<std::string> names;  // of the lines still going
+      for (SolverSettings& s : going) {
+        s.dt = dt;
         SampledRun run;
-        const TradeRow row = run_row(s, to_string(s.integrator), "dt", s.dt, run);
+        const TradeRow row = run_row(s, method, "dt", dt, run);
         method_wall += run.wall_seconds;
         const std::string why = accuracy_stop(plan, ref.report, row, level);
         if (!why.empty()) {
@@ -222,16 +246,17 @@ struct Sweep {
           continue;
         }
         next += next_wall(row, run);
-        still.push_back(iterations);
+        still.push_back(s);
+        names.push_back(line_name(row));
       }
       going = std::move(still);
       if (!going.empty() && method_wall + next > plan.method_budget_seconds) {
-        for (int iterations : going)
-          stopped(line_name(to_string(s.integrator), iterations), "budget");
+        for (const std::string& name : names)
+          stopped(name, "budget");
         return;
       }
-      if (!going.empty() && at_step_floor(s.dt, to_string(s.integrator))) return;
-      s.dt /= 2;
+      if (!going.empty() && at_step_floor(dt, method)) return;
+      dt /= 2;
     }
   }
 
@@ -281,6 +306,14 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
         throw std::invalid_argument("projective iterations must be in [1, 1000], got " +
                                     std::to_string(i));
   }
+  if (wanted(plan, to_string(IntegratorKind::implicit_euler))) {
+    if (plan.implicit_tolerances.empty())
+      throw std::invalid_argument("implicit_euler needs at least one linear tolerance to sweep");
+    for (double t : plan.implicit_tolerances)
+      if (!limits::kLinearTolerance.contains(t))
+        throw std::invalid_argument("implicit_euler linear tolerance: " +
+                                    limits::kLinearTolerance.refusal(t));
+  }
   for (double dt : plan.steps)
     if (const std::string why = step_refusal(dt, plan.seconds / plan.samples); !why.empty())
       throw std::invalid_argument("step: " + why);
@@ -315,6 +348,8 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
       sweep.rk4();
     else if (kind == IntegratorKind::projective)
       sweep.projective();
+    else if (kind == IntegratorKind::implicit_euler)
+      sweep.implicit();
     else
       sweep.fixed_step(kind);
   }

@@ -29,8 +29,11 @@ struct TradeoffPlan {
   // Projective's second knob: its sweep runs each of these iterations counts at
   // every step it tries (docs/tradeoff.md says why these). Each in [1, 1000].
   std::vector<int> projective_iterations = {1, 2, 4, 10, 30};
-  // When not empty, every fixed-step method (projective too, at each of its
-  // iterations counts) runs exactly these steps instead of its halving sweep,
+  // The implicit step's second knob, likewise: its conjugate-gradient tolerance
+  // (relative residual; docs/tradeoff.md says why these). Each in [1e-14, 0.01].
+  std::vector<double> implicit_tolerances = {1e-10, 1e-6, 1e-3};
+  // When not empty, every fixed-step method (projective and implicit_euler too,
+  // at each setting of their second knob) runs exactly these steps instead of its halving sweep,
   // with no stopping rule: to measure the settings something else will run (the
   // window's real-time pick, realtime_pick.h). Each must divide the sample
   // interval seconds / samples into whole steps. RK4 and adaptive are unchanged.
@@ -41,8 +44,9 @@ struct TradeoffPlan {
 };
 
 // Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
-// an unknown method, projective with no iterations count or one out of range, a
-// step out of range or not dividing the sample interval), std::runtime_error
+// an unknown method, projective with no iterations count or one out of range,
+// implicit_euler with no tolerance or one out of range, a step out of range or
+// not dividing the sample interval), std::runtime_error
 // when even the reference diverges.
 TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
                             const TradeoffPlan& plan,
