@@ -37,7 +37,7 @@ class GlBuffer {
 
 // Vertex attribute slots, shared by every shader (see shaders/*.vert).
 namespace vertex_slot {
-constexpr GLuint position = 0, normal = 1, colour = 1, scalar = 2, grid_side = 1;
+constexpr GLuint position = 0, normal = 1, colour = 1, scalar = 2;
 }
 
 // Slot `slot` of the bound vertex array reads `components` floats a vertex from

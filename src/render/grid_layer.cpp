@@ -7,10 +7,6 @@
 namespace neurocloth {
 namespace {
 
-// Strips this many cells long: few enough triangles (about 4,000) and short
-// enough that the width grid.vert gives each end covers the line between.
-constexpr int kCellsPerSegment = 5;
-
 void set_colour(GLint at, const palette::Colour& c) {
   glUniform3f(at, c[0], c[1], c[2]);
 }
@@ -22,12 +18,10 @@ GridLayer::GridLayer(const std::string& shader_dir)
   u_ = {program_.uniform("u_view_projection"), program_.uniform("u_cell"),
         program_.uniform("u_origin"),          program_.uniform("u_minor_colour"),
         program_.uniform("u_major_colour"),    program_.uniform("u_fade_centre"),
-        program_.uniform("u_fade_radius"),     program_.uniform("u_viewport"),
-        program_.uniform("u_max_half_width")};
+        program_.uniform("u_fade_radius")};
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
-  vertex_attribute(vertex_slot::position, strips_, 3, kGridFloatsPerVertex, 0);
-  vertex_attribute(vertex_slot::grid_side, strips_, 3, kGridFloatsPerVertex, 3);
+  vertex_attribute(vertex_slot::position, square_, 3, 3, 0);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -38,13 +32,10 @@ GridLayer::~GridLayer() {
 
 void GridLayer::place(const FrameSnapshot& snapshot) {
   ground_ = place_ground_grid(snapshot);
-  const std::vector<float> strips = ground_grid_strips(ground_, kCellsPerSegment);
-  strips_.upload(strips);
-  vertices_ = strips.size() / kGridFloatsPerVertex;
+  square_.upload(ground_grid_square(ground_));
 }
 
-void GridLayer::draw(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int width,
-                     int height) const {
+void GridLayer::draw(const OrbitCamera& camera, const Eigen::Matrix4f& vp) const {
   program_.use();
   glUniformMatrix4fv(u_.view_projection, 1, GL_FALSE, vp.data());
   glUniform1f(u_.cell, float(ground_.cell));
@@ -56,20 +47,12 @@ void GridLayer::draw(const OrbitCamera& camera, const Eigen::Matrix4f& vp, int w
   glUniform3f(u_.fade_centre, float(camera.target.x()), float(camera.target.y()),
               float(camera.target.z()));
   glUniform1f(u_.fade_radius, float(ground_.half_size()));
-  glUniform2f(u_.viewport, float(width), float(height));
-  glUniform1f(u_.max_half_width, float(0.5 * ground_.cell));
   glEnable(GL_BLEND);
   // Colour blends; the framebuffer's alpha stays opaque for the PNG.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   glDepthMask(GL_FALSE);
-  // Where strips cross (and where they are half a cell wide and meet), a pixel
-  // is blended once: the first strip to draw it marks it in the stencil.
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_EQUAL, 0, 0xff);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   glBindVertexArray(vao_);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertices_));
-  glDisable(GL_STENCIL_TEST);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
 }

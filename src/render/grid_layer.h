@@ -1,7 +1,7 @@
 #pragma once
 // The ground grid's GL side: its program, its strips' buffer and vertex array,
 // where it lies (ground_grid.h places it), and its draw. The lines are drawn
-// per pixel on strips around them (shaders/grid.vert, grid.frag).
+// per pixel on one square (shaders/grid.frag).
 #include <GL/glew.h>
 
 #include <Eigen/Core>
@@ -21,26 +21,23 @@ class GridLayer {
   GridLayer(const GridLayer&) = delete;
   GridLayer& operator=(const GridLayer&) = delete;
 
-  // Places the grid under the snapshot's scene and uploads its strips.
+  // Places the grid under the snapshot's scene and uploads its square.
   void place(const FrameSnapshot& snapshot);
   const GroundGrid& ground() const { return ground_; }
 
   // Blended over what is drawn, without writing depth, so it hides nothing;
-  // leaves blending and the stencil test off.
-  void draw(const OrbitCamera& camera, const Eigen::Matrix4f& view_projection, int width,
-            int height) const;
+  // leaves blending off.
+  void draw(const OrbitCamera& camera, const Eigen::Matrix4f& view_projection) const;
 
-  long allocations() const { return strips_.allocations(); }
+  long allocations() const { return square_.allocations(); }
 
  private:
   GlProgram program_;
   struct {
-    GLint view_projection, cell, origin, minor, major, fade_centre, fade_radius, viewport,
-        max_half_width;
+    GLint view_projection, cell, origin, minor, major, fade_centre, fade_radius;
   } u_;
   GLuint vao_ = 0;
-  GlBuffer strips_;
-  std::size_t vertices_ = 0;
+  GlBuffer square_;
   GroundGrid ground_;
 };
 

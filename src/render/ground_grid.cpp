@@ -33,37 +33,10 @@ GroundGrid place_ground_grid(const FrameSnapshot& snapshot) {
   return g;
 }
 
-std::vector<float> ground_grid_strips(const GroundGrid& g, int cells_per_segment) {
-  const int per = std::clamp(cells_per_segment, 1, std::max(g.cells, 1));
-  const int segments = (g.cells + per - 1) / per;
-  std::vector<float> v;
-  v.reserve(std::size_t(2) * (g.cells + 1) * segments * 6 * kGridFloatsPerVertex);
-  const double h = g.half_size();
-  // Lines along x (at fixed z), then along z (at fixed x): `across` is the
-  // axis a line's position is fixed on.
-  for (int across : {2, 0}) {
-    const int along = 2 - across;
-    for (int line = 0; line <= g.cells; ++line) {
-      const double at = -h + line * g.cell;
-      for (int k = 0; k < segments; ++k) {
-        const double from = -h + k * per * g.cell;
-        const double to = -h + std::min((k + 1) * per, g.cells) * g.cell;
-        auto vertex = [&](double t, float side) {
-          Vec3 p = g.centre;
-          p[across] += at;
-          p[along] += t;
-          for (int i = 0; i < 3; ++i)
-            v.push_back(float(p[i]));
-          for (int i = 0; i < 3; ++i)
-            v.push_back(i == across ? side : 0.0f);
-        };
-        // Two triangles: (from, -) (to, -) (from, +) and (from, +) (to, -) (to, +).
-        vertex(from, -1), vertex(to, -1), vertex(from, 1);
-        vertex(from, 1), vertex(to, -1), vertex(to, 1);
-      }
-    }
-  }
-  return v;
+std::vector<float> ground_grid_square(const GroundGrid& g) {
+  const float h = float(g.half_size());
+  const float x = float(g.centre.x()), y = float(g.centre.y()), z = float(g.centre.z());
+  return {x - h, y, z - h, x + h, y, z - h, x - h, y, z + h, x + h, y, z + h};
 }
 
 }  // namespace neurocloth

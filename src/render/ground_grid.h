@@ -19,15 +19,8 @@ struct GroundGrid {
 // height of a horizontal plane collider (the floor); cells sized to the scene.
 GroundGrid place_ground_grid(const FrameSnapshot& snapshot);
 
-// The grid's lines as strips to draw them on (shaders/grid.vert widens each
-// strip to the few pixels around its line, grid.frag draws the line in it per
-// pixel). Filling the whole square instead cost about 7 ms of llvmpipe's time
-// a frame at 1280 x 720, mostly pixels far from any line (docs/rendering.md).
-// Every line at a cell boundary, in both directions, cut into segments of
-// `cells_per_segment` cells: per vertex the point on the line (x, y, z) and
-// the unit direction across it in the grid's plane, signed for the strip's
-// side (x, y, z); two triangles a segment, no index.
-inline constexpr int kGridFloatsPerVertex = 6;
-std::vector<float> ground_grid_strips(const GroundGrid& grid, int cells_per_segment);
+// The grid's square as x, y, z of four corners in triangle-strip order; the
+// lines are drawn on it per pixel (shaders/grid.frag).
+std::vector<float> ground_grid_square(const GroundGrid& grid);
 
 }  // namespace neurocloth

@@ -404,8 +404,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   const palette::Colour& bg = palette::kBackground;
   glClearColor(bg[0], bg[1], bg[2], 1);
   glClearDepth(1);
-  glClearStencil(0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   // Everything the renderer relies on is set here: the window's UI may have
   // changed any of it since the last frame.
   glEnable(GL_DEPTH_TEST);
@@ -413,7 +412,6 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);  // two-sided cloth
   glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_STENCIL_TEST);
   glDisable(GL_BLEND);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -421,7 +419,7 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   const Eigen::Matrix4f vp = camera.projection(double(width) / height) * camera.view();
   m.draw_surfaces(camera, vp, options);
   // After the opaque surfaces: blended over them, it shows through nothing.
-  if (options.grid) m.grid.draw(camera, vp, width, height);
+  if (options.grid) m.grid.draw(camera, vp);
   m.draw_lines(vp, snapshot, options, height);
   if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);

@@ -3,10 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <map>
-
 #include "render_test_support.h"
 #include "snapshot_framing.h"
 
@@ -38,53 +34,16 @@ TEST(GroundGrid, LiesOnAFloorPlane) {
   EXPECT_DOUBLE_EQ(place_ground_grid(s).centre.y(), 0.3);
 }
 
-// Every line at a cell boundary, both directions, tiled end to end by its
-// segments (the last one shorter), each segment two triangles spanning both
-// sides of the line, the side vector across the line.
-TEST(GroundGrid, StripsFollowEveryLineEndToEnd) {
+TEST(GroundGrid, TheSquareSpansTheGrid) {
   GroundGrid g;
   g.cells = 4;
   g.cell = 0.5;
   g.centre = Vec3(1, 0.25, 2);
-  const int per = 3;  // segments of 3 cells and 1 cell
-  const std::vector<float> v = ground_grid_strips(g, per);
-  const std::size_t vertices = v.size() / kGridFloatsPerVertex;
-  ASSERT_EQ(v.size() % kGridFloatsPerVertex, 0u);
-  ASSERT_EQ(vertices, std::size_t(2 * 5 * 2 * 6));
-  // For each direction (the axis a line is fixed on) and line: the stretches covered.
-  std::map<std::pair<int, int>, std::vector<std::pair<double, double>>> covered;
-  for (std::size_t q = 0; q < vertices / 6; ++q) {
-    const float* f = &v[q * 6 * kGridFloatsPerVertex];
-    auto at = [&](int vertex, int i) { return double(f[vertex * kGridFloatsPerVertex + i]); };
-    const int across = at(0, 3) != 0 ? 0 : 2, along = 2 - across;
-    double lo = 1e9, hi = -1e9;
-    int minus = 0, plus = 0;
-    for (int k = 0; k < 6; ++k) {
-      EXPECT_FLOAT_EQ(float(at(k, 1)), 0.25f);
-      EXPECT_EQ(at(k, 4), 0.0);
-      EXPECT_EQ(at(k, 3 + along), 0.0);
-      EXPECT_EQ(std::abs(at(k, 3 + across)), 1.0);
-      (at(k, 3 + across) < 0 ? minus : plus)++;
-      EXPECT_DOUBLE_EQ(at(k, across), at(0, across));  // one line
-      lo = std::min(lo, at(k, along));
-      hi = std::max(hi, at(k, along));
-    }
-    EXPECT_EQ(minus, 3);
-    EXPECT_EQ(plus, 3);
-    const double offset = (at(0, across) - g.centre[across] + g.half_size()) / g.cell;
-    EXPECT_NEAR(offset, std::round(offset), 1e-6) << "off the lines";
-    covered[{across, int(std::lround(offset))}].push_back(
-        {lo - g.centre[along], hi - g.centre[along]});
-  }
-  ASSERT_EQ(covered.size(), 10u);
-  for (auto& [line, stretches] : covered) {
-    std::sort(stretches.begin(), stretches.end());
-    ASSERT_EQ(stretches.size(), 2u);
-    EXPECT_NEAR(stretches[0].first, -1.0, 1e-6);
-    EXPECT_NEAR(stretches[0].second, 0.5, 1e-6);
-    EXPECT_NEAR(stretches[1].first, 0.5, 1e-6);
-    EXPECT_NEAR(stretches[1].second, 1.0, 1e-6);
-  }
+  const std::vector<float> v = ground_grid_square(g);
+  ASSERT_EQ(v.size(), 12u);
+  const std::vector<float> expected = {0, 0.25, 1, 2, 0.25, 1, 0, 0.25, 3, 2, 0.25, 3};
+  for (std::size_t i = 0; i < v.size(); ++i)
+    EXPECT_FLOAT_EQ(v[i], expected[i]) << i;
 }
 
 TEST(GroundGrid, CoversTheSceneManyTimesOver) {
