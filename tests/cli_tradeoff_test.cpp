@@ -202,6 +202,11 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--projective-iterations", "4,0"});
   expect_input_error(args, {"--projective-iterations", "must be in [1, 1000]"});
+  for (const char* workers : {"0", "-1", "65"}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {"--workers", workers});
+    expect_input_error(args, {"--workers", "must be in [1, 64]"});
+  }
   // --size: a grid a side, on a grid scene; --dt: steps that land on every sample time.
   for (const char* size : {"1", "1025"}) {
     args = quick_tradeoff(scene_asset("hanging"), report);
