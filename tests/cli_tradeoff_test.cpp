@@ -240,6 +240,11 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
     args.insert(args.end(), {"--implicit-tolerances", tolerances});
     expect_input_error(args, {"--implicit-tolerances", "must be in [1e-14, 0.01]"});
   }
+  for (const char* workers : {"0", "-1", "65"}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {"--workers", workers});
+    expect_input_error(args, {"--workers", "must be in [1, 64]"});
+  }
   // --size: a grid a side, on a grid scene; --dt: steps that land on every sample time.
   for (const char* size : {"1", "1025"}) {
     args = quick_tradeoff(scene_asset("hanging"), report);

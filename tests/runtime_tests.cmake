@@ -3,7 +3,7 @@
 add_executable(runtime_tests simulation_thread_test.cpp live_scene_test.cpp
   snapshot_exchange_test.cpp realtime_pacer_test.cpp simulation_live_controls_test.cpp
   simulation_thread_lockstep_test.cpp fit_worker_test.cpp step_threads_test.cpp
-  realtime_pick_test.cpp)
+  realtime_pick_test.cpp tradeoff_workers_test.cpp)
 target_link_libraries(runtime_tests PRIVATE neurocloth_runtime neurocloth_fit_worker
   GTest::gtest_main)
 target_compile_definitions(runtime_tests PRIVATE NEUROCLOTH_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tmp")

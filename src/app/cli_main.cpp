@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "input_error.h"
+#include "tradeoff/tradeoff_sweep.h"
 
 int main(int argc, char** argv) {
   using namespace neurocloth;
@@ -74,9 +75,9 @@ int main(int argc, char** argv) {
   tradeoff->add_option("--samples", trade.samples,
                        "Times (evenly spaced) at which positions are compared (default 8)");
   tradeoff->add_option("--reference-budget", trade.reference_budget,
-                       "Wall seconds for halving the RK4 reference's step (default 20)");
+                       "Run seconds for halving the RK4 reference's step (default 20)");
   tradeoff->add_option("--method-budget", trade.method_budget,
-                       "Wall seconds for each method's sweep (default 8)");
+                       "Run seconds for each method's sweep (default 8)");
   tradeoff->add_option("--levels", trade.levels, "Settings per method at most (default 7)");
   tradeoff
       ->add_option("--methods", trade.methods, "Only these (" + integrator_names() + ", adaptive)")
@@ -96,6 +97,10 @@ int main(int argc, char** argv) {
       ->add_option("--dt", trade.steps,
                    "Run the fixed-step methods at only these steps (s; e.g. 1/60), no halving")
       ->delimiter(',');
+  tradeoff->add_option("--workers", trade.workers,
+                       "Method lines measured at once, 1 to " +
+                           std::to_string(kMaxTradeoffWorkers) +
+                           " (default: one per core; 1: one after another)");
 
   RelaxOptions rel;
   auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");

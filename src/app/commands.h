@@ -61,8 +61,8 @@ struct TradeoffOptions {
   double seconds = 2;
   std::string out;  // REPORT: the three files' common path without extension
   int samples = 8;
-  double reference_budget = 20;             // wall seconds for the RK4 reference's halvings
-  double method_budget = 8;                 // wall seconds per method's sweep
+  double reference_budget = 20;             // run cost seconds for the RK4 reference's halvings
+  double method_budget = 8;                 // run cost seconds per method's sweep
   int levels = 7;                           // settings per method at most
   std::vector<std::string> methods;         // empty: all
   std::vector<int> projective_iterations;   // empty: the sweep's own grid
@@ -72,6 +72,9 @@ struct TradeoffOptions {
   std::optional<int> size;
   // --dt: the only steps the fixed-step methods run, each "0.01" or "1/60" (s).
   std::vector<std::string> steps;
+  // --workers N: method lines measured at once (1: one after another); default
+  // one per core (TradeoffPlan::workers).
+  std::optional<int> workers;
 };
 int run_tradeoff(const TradeoffOptions& options);
 // The parts `simulate --accuracy` shares when it has to measure a trade itself:

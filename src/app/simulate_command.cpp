@@ -73,7 +73,7 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
     pick.linear_tolerance = c.settings.linear_tolerance;
   pick.trade_seconds = trade.seconds;
   std::printf(
-      "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s wall "
+      "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s "
       "per simulated s)\n",
       pick.requested, describe_setting(c.row).c_str(), pick.trade.c_str(), trade.seconds,
       c.row.position_error_max, c.row.position_error_rms, c.row.wall_per_simulated_second);

@@ -85,7 +85,12 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
                        limits::kLinearTolerance.refusal(t));
   if (o.size && !limits::kGridSize.contains(*o.size))
     throw InputError("command line", "--size", limits::kGridSize.refusal(*o.size));
+  if (o.workers && (*o.workers < 1 || *o.workers > kMaxTradeoffWorkers))
+    throw InputError("command line", "--workers",
+                     "must be in [1, " + std::to_string(kMaxTradeoffWorkers) + "], got " +
+                         std::to_string(*o.workers) + " (method lines measured at once)");
   TradeoffPlan plan;
+  plan.workers = o.workers.value_or(0);
   for (const std::string& text : o.steps) {
     const std::optional<double> dt = parse_step(text);
     if (!dt)
@@ -107,7 +112,8 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
 
 TradeTable measure_trade(const Scene& shipped, const std::string& scene_file,
                          const TradeoffPlan& plan) {
-  // Every run of the sweep, the reference too, shares its steps alike.
+  // The reference's runs share their steps alike; measure_tradeoff gives the
+  // lines one thread each in their steps when it measures several at once.
   Scene scene = shipped;
   scene.solver.threads = batch_step_threads(scene.topology.rest_positions.size());
   return measure_tradeoff(scene, scene_file, plan,
@@ -155,7 +161,7 @@ int run_tradeoff(const TradeoffOptions& o) {
       std::printf("  %-6s not certified (below the reference's resolution)\n",
                   percent(budget).c_str());
     else if (pick)
-      std::printf("  %-6s %s: %.3g s wall per simulated s\n", percent(budget).c_str(),
+      std::printf("  %-6s %s: %.3g s per simulated s\n", percent(budget).c_str(),
                   describe_setting(trade.rows[*pick]).c_str(),
                   trade.rows[*pick].wall_per_simulated_second);
     else

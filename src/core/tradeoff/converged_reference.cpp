@@ -11,8 +11,9 @@ namespace {
 
 std::string describe_run(const SampledRun& run) {
   char s[160];
-  std::snprintf(s, sizeof s, "reference rk4 dt=%.4g s: %s, %.3g s wall", run.settings.dt,
-                run.status == RunStatus::ok ? "ok" : "diverged", run.wall_seconds);
+  std::snprintf(s, sizeof s, "reference rk4 dt=%.4g s: %s, %.3g s %s", run.settings.dt,
+                run.status == RunStatus::ok ? "ok" : "diverged", run.cost_seconds,
+                to_string(run_clock(run.settings)));
   return s;
 }
 
@@ -37,7 +38,7 @@ ConvergedReference converge_reference(const Scene& scene, const std::vector<doub
     runs.push_back(run_sampled_timed(scene, s, times));
     const SampledRun& run = runs.back();
     ++r.runs;
-    r.wall_seconds += run.wall_seconds;
+    r.wall_seconds += run.cost_seconds;
     const bool complete = run.complete(times.size());
     std::string line = describe_run(run);
     if (complete && halvings_since_stable < 0) halvings_since_stable = 0;
@@ -73,7 +74,7 @@ ConvergedReference converge_reference(const Scene& scene, const std::vector<doub
     }
     // The next run takes twice the steps: would it still fit in the budget?
     const double reached = run.simulated_seconds > 0 ? run.simulated_seconds : seconds;
-    const double predicted = 2 * run.wall_seconds * seconds / reached;
+    const double predicted = 2 * run.cost_seconds * seconds / reached;
     if (r.wall_seconds + predicted > plan.budget_seconds) {
       r.stopped_by = "budget";
       break;

@@ -17,7 +17,7 @@ namespace neurocloth {
 struct ReferencePlan {
   double target = 1e-9;        // relative change between successive halvings to reach
   int max_halvings = 14;       // after the first stable run
-  double budget_seconds = 20;  // wall time for all reference runs together
+  double budget_seconds = 20;  // run cost (run_clock) of all reference runs together
 };
 
 struct ReferenceReport {
@@ -28,7 +28,7 @@ struct ReferenceReport {
   double target = 1e-9;
   bool met = false;
   int runs = 0;             // RK4 runs made (the diverged ones too)
-  double wall_seconds = 0;  // all of them together
+  double wall_seconds = 0;  // their cost (run_clock) all together
   std::string stopped_by;   // "target", "budget", "halvings" or "diverged"
 };
 

@@ -1,9 +1,30 @@
 #include "sampled_run.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 namespace neurocloth {
+
+RunClock run_clock(const SolverSettings& settings) {
+  return settings.threads > 1 ? RunClock::wall : RunClock::thread_cpu;
+}
+
+const char* to_string(RunClock clock) {
+  return clock == RunClock::wall ? "wall" : "thread CPU";
+}
+
+double now_seconds(RunClock clock) {
+  if (clock == RunClock::wall)
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  timespec t{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0)
+    throw std::runtime_error("clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 std::vector<double> sample_times(double seconds, int samples) {
   std::vector<double> t;
@@ -19,13 +40,13 @@ SampledRun run_sampled(const Scene& scene, const SolverSettings& settings,
   Simulation sim = s.make_simulation();
   SampledRun run;
   run.settings = settings;
-  using Clock = std::chrono::steady_clock;
+  const RunClock clock = run_clock(settings);
   for (double t : times) {
-    const auto start = Clock::now();
+    const double start = now_seconds(clock);
     sim.advance(t - sim.time());
     // The last sample is checked in full, as `simulate` checks its result.
     if (&t == &times.back()) sim.check_now();
-    run.wall_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+    run.cost_seconds += now_seconds(clock) - start;
     if (sim.status() != RunStatus::ok) break;
     // A healthy run that did not get there ran out of its step budget (solver_settings.h).
     if (sim.time() < t - 1e-9 * t) {
@@ -57,13 +78,13 @@ SampledRun run_sampled(const Scene& scene, const SolverSettings& settings,
 SampledRun run_sampled_timed(const Scene& scene, const SolverSettings& settings,
                              const std::vector<double>& times, int repeats, double short_seconds) {
   SampledRun run = run_sampled(scene, settings, times);
-  if (!run.complete(times.size()) || run.wall_seconds >= short_seconds) return run;
-  std::vector<double> walls = {run.wall_seconds};
-  while (static_cast<int>(walls.size()) < repeats)
-    walls.push_back(run_sampled(scene, settings, times).wall_seconds);
-  std::sort(walls.begin(), walls.end());
-  const std::size_t n = walls.size();
-  run.wall_seconds = n % 2 ? walls[n / 2] : 0.5 * (walls[n / 2 - 1] + walls[n / 2]);
+  if (!run.complete(times.size()) || run.cost_seconds >= short_seconds) return run;
+  std::vector<double> costs = {run.cost_seconds};
+  while (static_cast<int>(costs.size()) < repeats)
+    costs.push_back(run_sampled(scene, settings, times).cost_seconds);
+  std::sort(costs.begin(), costs.end());
+  const std::size_t n = costs.size();
+  run.cost_seconds = n % 2 ? costs[n / 2] : 0.5 * (costs[n / 2 - 1] + costs[n / 2]);
   run.timing_runs = static_cast<int>(n);
   return run;
 }

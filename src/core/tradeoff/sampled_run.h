@@ -16,10 +16,11 @@ struct SampledRun {
   std::vector<std::vector<double>> positions;  // per sample: x0 y0 z0 x1 y1 z1 ...
   std::vector<double> energy;                  // per sample: total energy, J
   RunStatus status = RunStatus::ok;
-  std::string reason;            // why it diverged
-  bool stopped = false;          // healthy but behind: it ran out of step budget
-  double wall_seconds = 0;       // inside advance() only: what the user waits for
-  int timing_runs = 1;           // wall_seconds is the median of this many identical runs
+  std::string reason;    // why it diverged
+  bool stopped = false;  // healthy but behind: it ran out of step budget
+  // Inside advance() only, on run_clock (below): what the run costs.
+  double cost_seconds = 0;
+  int timing_runs = 1;           // cost_seconds is the median of this many identical runs
   double simulated_seconds = 0;  // how far it got
   long steps = 0, rejected_steps = 0, force_evaluations = 0, cg_iterations = 0;
 
@@ -27,6 +28,16 @@ struct SampledRun {
     return status == RunStatus::ok && !stopped && times.size() == samples;
   }
 };
+
+// The clock a run's cost is read on. With one thread in the step, the running
+// thread's CPU time: runs measured side by side (the tradeoff's workers) or
+// next to other work on a shared machine are not charged for each other's
+// time. With threads inside the step the caller's CPU time would miss its
+// helpers' share, so wall time (steady_clock) then.
+enum class RunClock { thread_cpu, wall };
+RunClock run_clock(const SolverSettings& settings);
+const char* to_string(RunClock clock);  // "thread CPU" or "wall"
+double now_seconds(RunClock clock);
 
 // `samples` times evenly spaced over (0, seconds], the last one at `seconds`.
 std::vector<double> sample_times(double seconds, int samples);

@@ -22,7 +22,7 @@ std::string g3(double v) {
 void reference_paragraph(std::ostringstream& md, const TradeTable& t) {
   const ReferenceReport& r = t.reference;
   md << "**Reference:** RK4 at dt = " << g3(r.dt) << " s (" << r.runs << " runs, "
-     << fmt("%.1f", r.wall_seconds) << " s wall). ";
+     << fmt("%.1f", r.wall_seconds) << " s run cost). ";
   if (r.change < 0) {
     md << "No two finished runs could be compared, so no error here is certified.\n\n";
     return;
@@ -63,8 +63,9 @@ std::string trade_summary(const TradeTable& t, const std::string& chart) {
      << g3(t.seconds) << " s of `" << t.scene_file << "` each. Positions are compared with the "
      << "reference at " << t.samples << " times (every " << g3(t.seconds / t.samples)
      << " s); errors are relative to the cloth's size, " << g3(t.cloth_size)
-     << " m (its bounding-box diagonal at the start). Cost is wall seconds per simulated second "
-        "on the machine that measured it (the median of "
+     << " m (its bounding-box diagonal at the start). Cost is seconds per simulated second on "
+        "the machine that measured it: the running thread's CPU time when the step has one "
+        "thread, else wall time (the median of "
      << kTimingRepeats << " identical runs for runs under " << kShortRunSeconds << " s).\n\n";
   if (!chart.empty()) md << "![error against cost](" << chart << ")\n\n";
   reference_paragraph(md, t);

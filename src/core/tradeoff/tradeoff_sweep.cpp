@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
+#include "ordered_jobs.h"
 #include "stability.h"
 
 namespace neurocloth {
@@ -24,7 +26,7 @@ TradeRow row_from(const SampledRun& run, const SampledRun& reference, const Erro
   row.force_evaluations = run.force_evaluations;
   row.rejected_steps = run.rejected_steps;
   row.wall_per_simulated_second =
-      run.simulated_seconds > 0 ? run.wall_seconds / run.simulated_seconds : kNaN;
+      run.simulated_seconds > 0 ? run.cost_seconds / run.simulated_seconds : kNaN;
   if (run.complete(samples)) {
     const RunError e = compare_runs(run, reference, scale);
     row.position_error_max = e.position_max;
@@ -39,7 +41,7 @@ TradeRow row_from(const SampledRun& run, const SampledRun& reference, const Erro
 
 std::string describe_row(const TradeRow& row) {
   char s[256];
-  std::snprintf(s, sizeof s, "%s: %s, max error %.3g, rms %.3g, %.3g s wall per simulated s",
+  std::snprintf(s, sizeof s, "%s: %s, max error %.3g, rms %.3g, %.3g s per simulated s",
                 describe_setting(row).c_str(), row.status.c_str(), row.position_error_max,
                 row.position_error_rms, row.wall_per_simulated_second);
   return s;
@@ -64,11 +66,11 @@ std::string accuracy_stop(const TradeoffPlan& plan, const ReferenceReport& ref, 
   return "";
 }
 
-// The wall time the next halving of a run is predicted to take: twice this one's.
+// The cost the next halving of a run is predicted to have: twice this one's.
 // A run that did not finish says little about what the next one costs: only the
 // time already spent counts against the budget then.
-double next_wall(const TradeRow& row, const SampledRun& run) {
-  return row.ok() ? 2 * run.wall_seconds : 0;
+double next_cost(const TradeRow& row, const SampledRun& run) {
+  return row.ok() ? 2 * run.cost_seconds : 0;
 }
 
 }  // namespace
@@ -82,6 +84,13 @@ double first_step(const Scene& scene, IntegratorKind kind, double interval) {
   while (h > 2 * bound && h > interval * 1e-12)
     h /= 2;
   return h;
+}
+
+int tradeoff_workers(int workers, std::size_t lines) {
+  const int wanted =
+      workers > 0 ? workers : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(1, static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(wanted),
+                                                            std::max<std::size_t>(lines, 1))));
 }
 
 std::string step_refusal(double dt, double interval) {
@@ -102,18 +111,29 @@ std::string step_refusal(double dt, double interval) {
 
 namespace {
 
-// What every method's sweep shares.
+// What one method's line adds to the table, kept apart until it is merged in
+// method order.
+struct Line {
+  std::vector<TradeRow> rows;
+  std::vector<std::string> stops;
+  std::vector<std::string> log;  // when not told live
+};
+
+// One method's sweep: reads what every line shares, writes only its own line.
 struct Sweep {
-  const Scene& scene;
+  const Scene& scene;  // the line's own copy
   const TradeoffPlan& plan;
   const std::vector<double>& times;
   const ErrorScale& scale;
   const ConvergedReference& ref;
-  const std::function<void(const std::string&)>& log;
-  TradeTable& table;
+  const std::function<void(const std::string&)>* live;  // null: say() keeps it in the line
+  Line& out;
 
   void say(const std::string& s) const {
-    if (log) log(s);
+    if (!live)
+      out.log.push_back(s);
+    else if (*live)
+      (*live)(s);
   }
 
   // Runs one setting and adds its row.
@@ -126,23 +146,23 @@ struct Sweep {
     row.value = value;
     if (s.integrator == IntegratorKind::projective) row.iterations = s.iterations;
     say(describe_row(row));
-    table.rows.push_back(row);
+    out.rows.push_back(row);
     return row;
   }
 
   void stopped(const std::string& line, const std::string& why) {
     say("  " + line + " stops: " + why);
-    table.sweep_stops.push_back(line + ": " + why);
+    out.stops.push_back(line + ": " + why);
   }
 
   // Runs one setting of a line and adds its row; false when the line stops here.
   bool measure(const SolverSettings& s, const std::string& method, const char* parameter,
-               double value, int level, double& line_wall) {
+               double value, int level, double& line_cost) {
     SampledRun run;
     const TradeRow row = run_row(s, method, parameter, value, run);
-    line_wall += run.wall_seconds;
+    line_cost += run.cost_seconds;
     std::string why = accuracy_stop(plan, ref.report, row, level);
-    if (why.empty() && line_wall + next_wall(row, run) > plan.method_budget_seconds) why = "budget";
+    if (why.empty() && line_cost + next_cost(row, run) > plan.method_budget_seconds) why = "budget";
     if (why.empty()) return true;
     stopped(line_name(row), why);
     return false;
@@ -156,7 +176,7 @@ struct Sweep {
       row.parameter = "dt";
       row.value = row.dt;
       say(describe_row(row));
-      table.rows.push_back(row);
+      out.rows.push_back(row);
     }
   }
 
@@ -173,8 +193,8 @@ struct Sweep {
       return;
     }
     s.dt = first_step(scene, kind, plan.seconds / plan.samples);
-    double line_wall = 0;
-    for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_wall); ++level) {
+    double line_cost = 0;
+    for (int level = 1; measure(s, to_string(kind), "dt", s.dt, level, line_cost); ++level) {
       if (at_step_floor(s.dt, to_string(kind))) break;
       s.dt /= 2;
     }
@@ -185,7 +205,7 @@ struct Sweep {
   bool at_step_floor(double dt, const std::string& line) {
     if (dt / 2 >= limits::kTimeStep.low) return false;
     say("  " + line + " stops: the step floor (1e-6 s)");
-    table.sweep_stops.push_back(line + ": step floor");
+    out.stops.push_back(line + ": step floor");
     return true;
   }
 
@@ -230,7 +250,7 @@ struct Sweep {
       return;
     }
     double dt = first_step(scene, kind, plan.seconds / plan.samples);
-    double method_wall = 0;
+    double method_cost = 0;
     for (int level = 1; !going.empty(); ++level) {
       double next = 0;
       std::vector<SolverSettings> still;
@@ -239,18 +259,18 @@ struct Sweep {
         s.dt = dt;
         SampledRun run;
         const TradeRow row = run_row(s, method, "dt", dt, run);
-        method_wall += run.wall_seconds;
+        method_cost += run.cost_seconds;
         const std::string why = accuracy_stop(plan, ref.report, row, level);
         if (!why.empty()) {
           stopped(line_name(row), why);
           continue;
         }
-        next += next_wall(row, run);
+        next += next_cost(row, run);
         still.push_back(s);
         names.push_back(line_name(row));
       }
       going = std::move(still);
-      if (!going.empty() && method_wall + next > plan.method_budget_seconds) {
+      if (!going.empty() && method_cost + next > plan.method_budget_seconds) {
         for (const std::string& name : names)
           stopped(name, "budget");
         return;
@@ -270,14 +290,14 @@ struct Sweep {
     SolverSettings s = scene.solver;
     s.integrator = IntegratorKind::network;
     s.adaptive = true;
-    double line_wall = 0, last_cap = -1;
+    double line_cost = 0, last_cap = -1;
     int level = 0;
     for (double safety = 1; safety > 1e-6; safety /= 2) {
       const double cap = std::min(s.dt, safety * bound);
       if (cap == last_cap) continue;
       last_cap = cap;
       s.adaptive_settings.safety = safety;
-      if (!measure(s, kAdaptiveMethod, "safety", safety, ++level, line_wall)) return;
+      if (!measure(s, kAdaptiveMethod, "safety", safety, ++level, line_cost)) return;
     }
   }
 };
@@ -317,6 +337,9 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
   for (double dt : plan.steps)
     if (const std::string why = step_refusal(dt, plan.seconds / plan.samples); !why.empty())
       throw std::invalid_argument("step: " + why);
+  if (plan.workers < 0 || plan.workers > kMaxTradeoffWorkers)
+    throw std::invalid_argument("workers must be in [0, " + std::to_string(kMaxTradeoffWorkers) +
+                                "] (0: one per core), got " + std::to_string(plan.workers));
   for (const std::string& m : plan.methods)
     if (m != kAdaptiveMethod && !parse_integrator(m))
       throw std::invalid_argument("unknown method '" + m + "' (expected one of: " +
@@ -341,19 +364,42 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
       scene, times, scale, first_step(scene, IntegratorKind::rk4, interval), plan.reference, log);
   table.reference = ref.report;
 
-  Sweep sweep{scene, plan, times, scale, ref, log, table};
+  // Each line's stopping rules read only its own rows, so the lines can be
+  // measured side by side; they are merged in method order whatever finishes first.
+  std::vector<std::function<void(Sweep&)>> sweeps;
   for (IntegratorKind kind : kAllIntegrators) {
     if (!wanted(plan, to_string(kind))) continue;
     if (kind == IntegratorKind::rk4)
-      sweep.rk4();
+      sweeps.emplace_back([](Sweep& s) { s.rk4(); });
     else if (kind == IntegratorKind::projective)
-      sweep.projective();
+      sweeps.emplace_back([](Sweep& s) { s.projective(); });
     else if (kind == IntegratorKind::implicit_euler)
-      sweep.implicit();
+      sweeps.emplace_back([](Sweep& s) { s.implicit(); });
     else
-      sweep.fixed_step(kind);
+      sweeps.emplace_back([kind](Sweep& s) { s.fixed_step(kind); });
   }
-  if (wanted(plan, kAdaptiveMethod)) sweep.adaptive();
+  if (wanted(plan, kAdaptiveMethod)) sweeps.emplace_back([](Sweep& s) { s.adaptive(); });
+  const int workers = tradeoff_workers(plan.workers, sweeps.size());
+  // Two cores go to two lines or to one step, not both at once.
+  Scene line_scene = scene;
+  if (workers > 1) line_scene.solver.threads = 1;
+  std::vector<Line> lines(sweeps.size());
+  run_jobs_in_order(
+      sweeps.size(), workers,
+      [&](std::size_t i) {
+        const Scene own = line_scene;
+        Sweep sweep{own, plan, times, scale, ref, workers > 1 ? nullptr : &log, lines[i]};
+        sweeps[i](sweep);
+      },
+      [&](std::size_t i) {
+        Line& line = lines[i];
+        table.rows.insert(table.rows.end(), line.rows.begin(), line.rows.end());
+        table.sweep_stops.insert(table.sweep_stops.end(), line.stops.begin(), line.stops.end());
+        if (log)
+          for (const std::string& s : line.log)
+            log(s);
+        line = Line{};
+      });
   table.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return table;

@@ -4,6 +4,7 @@
 // propagation over a sweep of its safety factor, each compared with the
 // reference at the same sample times (docs/tradeoff.md says why these knobs
 // and these stopping rules).
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@ struct TradeoffPlan {
   // below `error_floor` (a finer step cannot be the cheapest for any budget at
   // or above it); an error within twice the reference's own change, once it has
   // `min_levels` settings (finer ones could not be told from the reference); or
-  // a next run predicted to overrun `method_budget_seconds` of wall time for the method.
+  // a next run predicted to overrun `method_budget_seconds` of run cost for the
+  // method (each run's cost on run_clock, sampled_run.h).
   int max_levels = 7;
   int min_levels = 3;
   double error_floor = 1e-4;
@@ -41,13 +43,27 @@ struct TradeoffPlan {
   // The methods to sweep (integrator names and/or "adaptive"); empty: all six.
   // RK4's line always comes from the reference's own runs.
   std::vector<std::string> methods;
+  // Method lines measured at once, each on a thread of its own: 0 is one per
+  // core; 1 measures them one after another. With more than one at work, every
+  // line's runs step on one thread (the scene's solver.threads is for the
+  // reference then, and for a lone line). The table does not depend on it but
+  // for its cost figures. In [0, kMaxTradeoffWorkers].
+  int workers = 0;
 };
+
+inline constexpr int kMaxTradeoffWorkers = 64;
+
+// The workers a plan's `workers` gives for `lines` method lines on this
+// machine: at least 1, at most `lines`.
+int tradeoff_workers(int workers, std::size_t lines);
 
 // Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
 // an unknown method, projective with no iterations count or one out of range,
 // implicit_euler with no tolerance or one out of range, a step out of range or
-// not dividing the sample interval), std::runtime_error
-// when even the reference diverges.
+// not dividing the sample interval, workers out of range), std::runtime_error
+// when even the reference diverges. `log` is called on the calling thread
+// only: live while the lines run one at a time, else each line's lines as one
+// block when it and every line before it are done, in method order.
 TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
                             const TradeoffPlan& plan,
                             const std::function<void(const std::string&)>& log = {});
