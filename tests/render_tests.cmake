@@ -5,6 +5,7 @@
 add_executable(render_tests
   render/orbit_camera_test.cpp render/picking_test.cpp render/cloth_shading_test.cpp
   render/collider_meshes_test.cpp render/snapshot_framing_test.cpp render/ground_grid_test.cpp
+  render/background_cache_test.cpp
   render/legend_text_test.cpp render/png_image_test.cpp render/renderer_test.cpp
   render/snapshot_command_test.cpp)
 target_include_directories(render_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "background_cache.h"
 #include "cloth_shading.h"
 #include "collider_meshes.h"
 #include "gl_buffer.h"
@@ -88,6 +89,7 @@ struct Renderer::Impl {
   std::size_t collider_indices = 0;
   bool geometry_uploaded = false;
   GridLayer grid;
+  BackgroundCache background;
 
   // Per-frame scratch, kept for its storage.
   ClothShading shading;
@@ -152,7 +154,11 @@ struct Renderer::Impl {
 
   void upload_geometry(const FrameSnapshot& s);
   void upload_frame(const FrameSnapshot& s, const RenderOptions& o);
-  void draw_surfaces(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
+  void use_surface(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
+  // The still part of a frame: the clear, the colliders, the ground grid.
+  void draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
+                       const RenderOptions& o);
+  void draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
   void draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s, const RenderOptions& o,
                   int height);
   void draw_legend(const RenderOptions& o, int width, int height);
@@ -224,8 +230,8 @@ void Renderer::Impl::upload_frame(const FrameSnapshot& s, const RenderOptions& o
   }
 }
 
-void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
-                                   const RenderOptions& o) {
+void Renderer::Impl::use_surface(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
+                                 const RenderOptions& o) {
   surface.use();
   glUniformMatrix4fv(su.view_projection, 1, GL_FALSE, vp.data());
   const Vec3 eye = camera.eye();
@@ -236,8 +242,16 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
       (-0.4 * camera.right() + 0.8 * camera.up() - 0.45 * camera.forward()).normalized();
   glUniform3f(su.key, float(key.x()), float(key.y()), float(key.z()));
   glUniform1f(su.strain_max, std::max(o.strain_max, 1e-6f));
+}
 
+void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
+                                     const RenderOptions& o) {
+  const palette::Colour& bg = palette::kBackground;
+  glClearColor(bg[0], bg[1], bg[2], 1);
+  glClearDepth(1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (o.colliders && collider_indices > 0) {
+    use_surface(camera, vp, o);
     set_colour(su.front, palette::kCollider);
     set_colour(su.back, palette::kCollider);
     glUniform1i(su.use_strain, 0);
@@ -247,9 +261,17 @@ void Renderer::Impl::draw_surfaces(const OrbitCamera& camera, const Eigen::Matri
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);
     glDrawElements(GL_TRIANGLES, GLsizei(collider_indices), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_POLYGON_OFFSET_FILL);
   }
+  // Blended over the colliders and the clear without writing depth, so it hides
+  // nothing drawn later; the cloth, opaque, covers it where it is in front.
+  if (o.grid) grid.draw(camera, vp);
+}
 
+void Renderer::Impl::draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
+                                const RenderOptions& o) {
   if (triangle_indices > 0) {
+    use_surface(camera, vp, o);
     set_colour(su.front, palette::kClothFront);
     set_colour(su.back, palette::kClothBack);
     glUniform1i(su.use_strain, o.strain ? 1 : 0);
@@ -401,10 +423,6 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   m.upload_frame(snapshot, options);
 
   glViewport(0, 0, width, height);
-  const palette::Colour& bg = palette::kBackground;
-  glClearColor(bg[0], bg[1], bg[2], 1);
-  glClearDepth(1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   // Everything the renderer relies on is set here: the window's UI may have
   // changed any of it since the last frame.
   glEnable(GL_DEPTH_TEST);
@@ -417,9 +435,19 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 
   const Eigen::Matrix4f vp = camera.projection(double(width) / height) * camera.view();
-  m.draw_surfaces(camera, vp, options);
-  // After the opaque surfaces: blended over them, it shows through nothing.
-  if (options.grid) m.grid.draw(camera, vp);
+  const BackgroundKey key{vp,           camera.target.cast<float>(), width,           height,
+                          options.grid, options.colliders,           m.geometry.get()};
+  bool copied = false;
+  if (m.background.worth_using(key)) {
+    check_gl("Renderer::draw, before the background's copy");
+    if (!m.background.holds(key) && m.background.begin_capture(key)) {
+      m.draw_background(camera, vp, options);
+      m.background.end_capture();
+    }
+    copied = m.background.holds(key) && m.background.copy_to_window();
+  }
+  if (!copied) m.draw_background(camera, vp, options);
+  m.draw_cloth(camera, vp, options);
   m.draw_lines(vp, snapshot, options, height);
   if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);
@@ -440,6 +468,18 @@ std::vector<std::uint8_t> Renderer::read_pixels(int width, int height) const {
                      rgba.begin() + std::ptrdiff_t((y + 1) * row),
                      rgba.begin() + std::ptrdiff_t((height - 1 - y) * row));
   return rgba;
+}
+
+void Renderer::set_background_cache(bool on) {
+  impl_->background.set_enabled(on);
+}
+
+long Renderer::background_copies() const {
+  return impl_->background.copies();
+}
+
+long Renderer::background_captures() const {
+  return impl_->background.captures();
 }
 
 long Renderer::buffer_allocations() const {

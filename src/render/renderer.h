@@ -40,6 +40,13 @@ class Renderer {
   // nodes, drawn as small discs in their own colour over everything.
   void draw(const FrameSnapshot& snapshot, const OrbitCamera& camera, const RenderOptions& options,
             int width, int height, const std::vector<float>* ghost_points = nullptr);
+  // While the camera stays still, the clear, the colliders and the grid are
+  // drawn once into an offscreen copy and each frame starts from it
+  // (background_cache.h). On by default; off, every frame draws everything.
+  void set_background_cache(bool on);
+  // Frames drawn from that copy, and times the copy was (re)drawn, so far.
+  long background_copies() const;
+  long background_captures() const;
   // The current framebuffer as RGBA, 8 bits per channel, top row first.
   std::vector<std::uint8_t> read_pixels(int width, int height) const;
   // How often a GL buffer was (re)allocated so far: frames of a size already
