@@ -41,7 +41,8 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
   std::snprintf(title, sizeof title, "%s: error against cost (%g s simulated)", t.scene.c_str(),
                 t.seconds);
   spec.title = title;
-  spec.x_label = "wall seconds per simulated second";
+  // The run's thread CPU time unless its step had threads (docs/tradeoff.md).
+  spec.x_label = "seconds of compute per simulated second";
   spec.y_label = "max position error / cloth size";
   spec.ring_legend = "Pareto front";
   const std::vector<std::size_t> front = pareto_front(t.rows);

@@ -1,5 +1,5 @@
 #pragma once
-// The trade's chart: max position error against wall seconds per simulated
+// The trade's chart: max position error against seconds of compute per simulated
 // second, log-log, one line per method (projective: one per iterations count),
 // the Pareto front ringed and joined, the reference's resolution as a dashed
 // rule when it did not reach its target.

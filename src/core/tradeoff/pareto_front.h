@@ -1,5 +1,5 @@
 #pragma once
-// Which settings are worth choosing: cost is wall seconds per simulated second,
+// Which settings are worth choosing: cost is seconds of compute per simulated second,
 // error the max position error. Only finished rows (status ok) count.
 #include <optional>
 #include <vector>

@@ -71,7 +71,7 @@ std::string trade_summary(const TradeTable& t, const std::string& chart) {
   reference_paragraph(md, t);
 
   const double resolution = reference_resolution(t);
-  md << "| error budget | cheapest setting meeting it | max error | RMS error | wall s per "
+  md << "| error budget | cheapest setting meeting it | max error | RMS error | s per "
         "simulated s | force evaluations |\n";
   md << "|---|---|---|---|---|---|\n";
   for (double budget : kErrorBudgets) {
