@@ -49,19 +49,23 @@ const TradeRow* measured_row(const SizedTrade& trade, int iterations) {
 }
 
 // Of the counts up to `most` (all fit the budget), the measured one of least
-// error; `most` when none is measured. Errors that differ by no more than the
-// reference's resolution cannot be told apart: the more iterations win then.
+// error; `most` when none is measured. Errors within the reference's
+// resolution of the least cannot be told apart: the fewest iterations among
+// those win then, leaving the window's renderer the most of the machine
+// (llvmpipe draws on the same cores).
 int least_measured_error(const SizedTrade& trade, int most) {
-  int best = most;
-  const TradeRow* best_row = nullptr;
-  const double tie = trade.table ? reference_resolution(*trade.table) : 0;
-  for (int it = most; it >= 1; --it)
+  const TradeRow* least = nullptr;
+  for (int it = 1; it <= most; ++it)
     if (const TradeRow* row = measured_row(trade, it);
-        row && (!best_row || row->position_error_max < best_row->position_error_max - tie)) {
-      best = it;
-      best_row = row;
-    }
-  return best;
+        row && (!least || row->position_error_max < least->position_error_max))
+      least = row;
+  if (!least) return most;
+  const double tie = reference_resolution(*trade.table);
+  for (int it = 1; it <= most; ++it)
+    if (const TradeRow* row = measured_row(trade, it);
+        row && row->position_error_max <= least->position_error_max + tie)
+      return it;
+  return least->iterations;
 }
 
 // What the note says of the picked setting's error at this size.
