@@ -164,7 +164,7 @@ TEST_F(HostileInput, TimeStepsBelowTheFloorAreRefused) {
   const auto row = trade.find('\n', header + 1);
   const std::string bad =
       write("trade.csv", trade.substr(0, row + 1) +
-                             "network,dt,1e-12,1e-12,,1,1e-09,1e-09,1e-09,1,1,0,ok\n" +
+                             "network,dt,1e-12,1e-12,,,1,1e-09,1e-09,1e-09,1,1,0,ok\n" +
                              trade.substr(row + 1));
   const int line = line_of(read_text(bad), "network,dt,1e-12");
   expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "1", "--accuracy", "0.5",
