@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "short_trade_plan.h"
 #include "test_support.h"
 #include "tradeoff/accuracy_choice.h"
 #include "tradeoff/tradeoff_sweep.h"
@@ -13,19 +14,8 @@
 namespace neurocloth {
 namespace {
 
-// Wall-time budgets no run here comes near: only step counts decide where the
-// sweep stops.
-constexpr double kUnboundedWallSeconds = 1e6;
-
 TradeoffPlan implicit_plan() {
-  TradeoffPlan plan;
-  plan.reference.budget_seconds = kUnboundedWallSeconds;
-  plan.method_budget_seconds = kUnboundedWallSeconds;
-  plan.seconds = 0.05;
-  plan.samples = 1;
-  plan.max_levels = 2;
-  plan.error_floor = 0;  // every level, however accurate
-  plan.methods = {"implicit_euler"};
+  TradeoffPlan plan = test::short_trade_plan("implicit_euler");
   plan.implicit_tolerances = {1e-10, 1e-2};
   return plan;
 }

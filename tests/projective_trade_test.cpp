@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hand_made_trade.h"
+#include "short_trade_plan.h"
 #include "test_support.h"
 #include "tradeoff/accuracy_choice.h"
 #include "tradeoff/trade_summary.h"
@@ -16,19 +17,8 @@
 namespace neurocloth {
 namespace {
 
-// Wall-time budgets no run here comes near: only step counts decide where the
-// sweep stops (the budget is tested with one no run can meet).
-constexpr double kUnboundedWallSeconds = 1e6;
-
 TradeoffPlan projective_plan() {
-  TradeoffPlan plan;
-  plan.reference.budget_seconds = kUnboundedWallSeconds;
-  plan.method_budget_seconds = kUnboundedWallSeconds;
-  plan.seconds = 0.05;
-  plan.samples = 1;
-  plan.max_levels = 2;
-  plan.error_floor = 0;  // every level, however accurate
-  plan.methods = {"projective"};
+  TradeoffPlan plan = test::short_trade_plan("projective");
   plan.projective_iterations = {1, 4};
   return plan;
 }
