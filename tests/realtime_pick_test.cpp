@@ -114,7 +114,10 @@ std::string write_trade(const std::string& name, int grid, const std::vector<Tra
   t.reference.change = 1e-3;
   t.reference.stopped_by = "budget";
   t.rows = rows;
-  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick";
+  // A folder of each test's own: ctest runs these tests side by side, and two
+  // writing one file would read each other's trade.
+  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick/" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name();
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name;
   std::ofstream(path, std::ios::trunc) << trade_csv(t);
