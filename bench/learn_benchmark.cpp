@@ -10,10 +10,10 @@
 #include <cmath>
 #include <string>
 
-#include "fit_problem.h"
-#include "input_starts.h"
-#include "optimizer.h"
-#include "scene.h"
+#include "core/scene/scene.h"
+#include "learn/fit_problem.h"
+#include "learn/input_starts.h"
+#include "learn/optimizer.h"
 
 namespace neurocloth {
 namespace {

@@ -6,7 +6,7 @@
 //   --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include "step_bench.h"
+#include "app/cli/step_bench.h"
 
 namespace neurocloth {
 namespace {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "core/scene/scene.h"
 #include "tradeoff/run_error.h"
 #include "tradeoff/sampled_run.h"
 

@@ -7,11 +7,11 @@
 // --benchmark_report_aggregates_only=true and quote the medians (docs/rendering.md).
 #include <benchmark/benchmark.h>
 
-#include "frame_snapshot.h"
-#include "osmesa_context.h"
-#include "renderer.h"
-#include "scene.h"
-#include "snapshot_framing.h"
+#include "core/scene/frame_snapshot.h"
+#include "core/scene/scene.h"
+#include "render/osmesa_context.h"
+#include "render/renderer.h"
+#include "render/snapshot_framing.h"
 
 namespace neurocloth {
 namespace {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
-#include "fuzzy/fcl_reader.h"
-#include "fuzzy/inference.h"
-#include "rule_tuning.h"
+#include "core/fuzzy/formats/fcl_reader.h"
+#include "core/fuzzy/inference.h"
+#include "learn/rule_tuning.h"
 
 namespace neurocloth {
 namespace {

@@ -1,8 +1,8 @@
 // Prints the measured part of docs/stability.md as Markdown: the critical
 // fixed step of every explicit integrator per spring set (bisection, the same
-// measurement tests/stability_matrix_test.cpp checks) against the bound the
+// measurement tests/core/scene/stability_matrix_test.cpp checks) against the bound the
 // adaptive step uses, and the survival table of the whole stability matrix
-// (tests/stability_probe.h), at its full size. Takes a few minutes: one
+// (src/core/scene/stability_probe.h), at its full size. Takes a few minutes: one
 // implicit step at the hard corner on 128x128 alone is about 17 s.
 //   build/stability_survey > survey.md
 #include <chrono>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "stability.h"
-#include "stability_probe.h"
+#include "core/integrators/stability.h"
+#include "core/scene/stability_probe.h"
 
 using namespace neurocloth;
 using namespace neurocloth::stability;
@@ -82,7 +82,8 @@ std::string corner_name(const Corner& c) {
 void survival() {
   std::printf("### Survival\n\n");
   std::printf(
-      "Each cell: one run of the matrix (`tests/stability_probe.h`): the hanging cloth resized, "
+      "Each cell: one run of the matrix (`src/core/scene/stability_probe.h`): the hanging cloth "
+      "resized, "
       "every free node displaced at random by 1e-4 of the spacing, `frames` calls of "
       "advance(dt), step budget 32 per dt, checks every 8 steps, ended by check_now(). ok: "
       "healthy at the end; ok, behind: healthy, but the step budget stopped it short of its time; "

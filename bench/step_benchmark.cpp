@@ -6,7 +6,7 @@
 // and quote the medians: this machine is shared and noisy.
 #include <benchmark/benchmark.h>
 
-#include "step_bench.h"
+#include "app/cli/step_bench.h"
 
 namespace neurocloth {
 namespace {

@@ -1,4 +1,4 @@
-#include "loglog_chart.h"
+#include "chart/loglog_chart.h"
 
 #include <cairo.h>
 #include <fontconfig/fontconfig.h>
@@ -10,7 +10,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "text_file.h"
+#include "core/io/text_file.h"
 
 namespace neurocloth {
 namespace {

@@ -1,4 +1,4 @@
-#include "loss_chart.h"
+#include "chart/loss_chart.h"
 
 #include <algorithm>
 #include <cmath>

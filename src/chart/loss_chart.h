@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "loglog_chart.h"
+#include "chart/loglog_chart.h"
 
 namespace neurocloth {
 

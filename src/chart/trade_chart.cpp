@@ -1,4 +1,4 @@
-#include "trade_chart.h"
+#include "chart/trade_chart.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "loglog_chart.h"
+#include "chart/loglog_chart.h"
 #include "tradeoff/trade_table.h"
 
 namespace neurocloth {

@@ -1,9 +1,9 @@
-#include "csv_fields.h"
+#include "learn/csv_fields.h"
 
 #include <cstdio>
 #include <limits>
 
-#include "input_error.h"
+#include "core/io/input_error.h"
 
 namespace neurocloth {
 

@@ -4,8 +4,8 @@
 #include <type_traits>
 #include <variant>
 
-#include "fit_problem_impl.h"
-#include "modules/module_set.h"
+#include "core/modules/module_set.h"
+#include "learn/fit_problem_impl.h"
 
 namespace neurocloth {
 using namespace fit_detail;

@@ -4,10 +4,10 @@
 #include <map>
 #include <set>
 
-#include "fit_problem_impl.h"
-#include "input_error.h"
-#include "modules/module_set.h"
-#include "physical_limits.h"
+#include "core/io/input_error.h"
+#include "core/io/physical_limits.h"
+#include "core/modules/module_set.h"
+#include "learn/fit_problem_impl.h"
 
 namespace neurocloth {
 using namespace fit_detail;

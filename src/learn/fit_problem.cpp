@@ -1,15 +1,15 @@
-#include "fit_problem.h"
+#include "learn/fit_problem.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "fit_problem_impl.h"
-#include "fuzzy/term_degrees.h"
-#include "input_error.h"
-#include "modules/module_set.h"
-#include "parameter_id.h"
-#include "physical_limits.h"
-#include "rollout.h"
+#include "core/fuzzy/term_degrees.h"
+#include "core/io/input_error.h"
+#include "core/io/physical_limits.h"
+#include "core/modules/module_set.h"
+#include "core/network/parameter_id.h"
+#include "learn/fit_problem_impl.h"
+#include "learn/rollout.h"
 
 namespace neurocloth {
 using namespace fit_detail;

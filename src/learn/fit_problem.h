@@ -15,9 +15,9 @@
 
 #include <Eigen/Core>
 
-#include "fuzzy/linguistic_variable.h"
-#include "reference_motion.h"
-#include "scene.h"
+#include "core/fuzzy/linguistic_variable.h"
+#include "core/scene/scene.h"
+#include "learn/reference_motion.h"
 
 namespace neurocloth {
 

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "fit_problem.h"
-#include "fuzzy_material.h"
-#include "parameter_id.h"
-#include "rollout.h"
+#include "core/network/parameter_id.h"
+#include "core/scene/fuzzy_material.h"
+#include "learn/fit_problem.h"
+#include "learn/rollout.h"
 
 namespace neurocloth {
 namespace fit_detail {

@@ -1,4 +1,4 @@
-#include "fitted_output.h"
+#include "learn/fitted_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "element_weights.h"
-#include "fuzzy_material.h"
-#include "json_writer.h"
-#include "loss_chart.h"
-#include "text_file.h"
+#include "chart/loss_chart.h"
+#include "core/io/json_writer.h"
+#include "core/io/text_file.h"
+#include "core/scene/element_weights.h"
+#include "core/scene/fuzzy_material.h"
 
 namespace neurocloth {
 namespace fs = std::filesystem;

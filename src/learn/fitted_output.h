@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
-#include "uncertainty.h"
+#include "core/scene/scene.h"
+#include "learn/uncertainty.h"
 
 namespace neurocloth {
 

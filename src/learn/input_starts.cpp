@@ -1,4 +1,4 @@
-#include "input_starts.h"
+#include "learn/input_starts.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "fit_problem.h"
+#include "learn/fit_problem.h"
 
 namespace neurocloth {
 

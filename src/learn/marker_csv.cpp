@@ -1,4 +1,4 @@
-#include "marker_csv.h"
+#include "learn/marker_csv.h"
 
 #include <cerrno>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "csv_fields.h"
-#include "input_error.h"
+#include "core/io/input_error.h"
+#include "learn/csv_fields.h"
 
 namespace neurocloth {
 namespace {

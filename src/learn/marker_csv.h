@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <string>
 
-#include "reference_motion.h"
+#include "learn/reference_motion.h"
 
 namespace neurocloth {
 

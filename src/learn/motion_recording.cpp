@@ -1,4 +1,4 @@
-#include "motion_recording.h"
+#include "learn/motion_recording.h"
 
 #include <cmath>
 #include <cstring>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "input_error.h"
+#include "core/io/input_error.h"
 
 namespace neurocloth {
 namespace {

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "reference_motion.h"
-#include "streamed_file.h"
-#include "vec3.h"
+#include "core/base/vec3.h"
+#include "learn/reference_motion.h"
+#include "learn/streamed_file.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "online_adaptation.h"
+#include "learn/online_adaptation.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "optimizer.h"
+#include "learn/optimizer.h"
 
 #include <LBFGS.h>
 

@@ -1,4 +1,4 @@
-#include "pc2_writer.h"
+#include "learn/pc2_writer.h"
 
 #include <cmath>
 #include <cstring>
@@ -6,9 +6,9 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "input_error.h"
-#include "mesh_node_order.h"
-#include "obj_mesh_writer.h"
+#include "core/io/input_error.h"
+#include "core/scene/mesh_node_order.h"
+#include "core/scene/obj_mesh_writer.h"
 
 namespace neurocloth {
 namespace {

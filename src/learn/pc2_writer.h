@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "cloth_topology.h"
-#include "streamed_file.h"
-#include "vec3.h"
+#include "core/base/vec3.h"
+#include "core/network/cloth_topology.h"
+#include "learn/streamed_file.h"
 
 namespace neurocloth {
 

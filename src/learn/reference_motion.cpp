@@ -1,11 +1,11 @@
-#include "reference_motion.h"
+#include "learn/reference_motion.h"
 
 #include <cmath>
 
-#include "input_error.h"
-#include "marker_csv.h"
-#include "motion_recording.h"
-#include "text_file.h"
+#include "core/io/input_error.h"
+#include "core/io/text_file.h"
+#include "learn/marker_csv.h"
+#include "learn/motion_recording.h"
 
 namespace neurocloth {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "vec3.h"
+#include "core/base/vec3.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "reference_pose.h"
+#include "learn/reference_pose.h"
 
 #include <algorithm>
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "reference_motion.h"
+#include "learn/reference_motion.h"
 
 namespace neurocloth {
 

@@ -1,12 +1,12 @@
-#include "rollout.h"
+#include "learn/rollout.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "integrator.h"
-#include "physical_limits.h"
-#include "scene.h"
+#include "core/integrators/integrator.h"
+#include "core/io/physical_limits.h"
+#include "core/scene/scene.h"
 
 namespace neurocloth {
 

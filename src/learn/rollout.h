@@ -13,8 +13,8 @@
 #include <memory>
 #include <vector>
 
-#include "cloth_network.h"
-#include "spring_adjoint.h"
+#include "core/network/cloth_network.h"
+#include "core/network/spring_adjoint.h"
 
 namespace neurocloth {
 

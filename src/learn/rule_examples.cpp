@@ -1,4 +1,4 @@
-#include "rule_examples.h"
+#include "learn/rule_examples.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string_view>
 
-#include "csv_fields.h"
-#include "input_error.h"
-#include "text_file.h"
+#include "core/io/input_error.h"
+#include "core/io/text_file.h"
+#include "learn/csv_fields.h"
 
 namespace neurocloth {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "fuzzy/fuzzy_system.h"
+#include "core/fuzzy/fuzzy_system.h"
 
 namespace neurocloth {
 

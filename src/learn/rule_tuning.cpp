@@ -1,4 +1,4 @@
-#include "rule_tuning.h"
+#include "learn/rule_tuning.h"
 
 #include <Eigen/QR>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "input_error.h"
+#include "core/io/input_error.h"
 
 namespace neurocloth {
 namespace {

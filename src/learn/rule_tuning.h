@@ -25,10 +25,10 @@
 
 #include <Eigen/Core>
 
-#include "fuzzy/inference.h"
-#include "optimizer.h"
-#include "rule_examples.h"
-#include "term_constraints.h"
+#include "core/fuzzy/inference.h"
+#include "learn/optimizer.h"
+#include "learn/rule_examples.h"
+#include "learn/term_constraints.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "streamed_file.h"
+#include "learn/streamed_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

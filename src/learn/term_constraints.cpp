@@ -1,4 +1,4 @@
-#include "term_constraints.h"
+#include "learn/term_constraints.h"
 
 #include <algorithm>
 #include <cmath>

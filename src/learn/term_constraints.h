@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "fuzzy/fuzzy_system.h"
+#include "core/fuzzy/fuzzy_system.h"
 
 namespace neurocloth {
 

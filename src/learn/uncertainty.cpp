@@ -1,4 +1,4 @@
-#include "uncertainty.h"
+#include "learn/uncertainty.h"
 
 #include <Eigen/Eigenvalues>
 

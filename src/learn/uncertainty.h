@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "optimizer.h"
+#include "learn/optimizer.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "background_cache.h"
+#include "render/background_cache.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "cloth_shading.h"
+#include "render/cloth_shading.h"
 
 #include <algorithm>
 #include <cmath>

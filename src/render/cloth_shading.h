@@ -4,7 +4,7 @@
 // The vectors are members so that frames of one size reuse their storage.
 #include <vector>
 
-#include "frame_snapshot.h"
+#include "core/scene/frame_snapshot.h"
 
 namespace neurocloth {
 

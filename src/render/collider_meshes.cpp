@@ -1,4 +1,4 @@
-#include "collider_meshes.h"
+#include "render/collider_meshes.h"
 
 #include <cmath>
 #include <type_traits>

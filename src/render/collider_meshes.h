@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "modules/module_specs.h"
+#include "core/modules/module_specs.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "gl_buffer.h"
+#include "render/gl_buffer.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gl_loader.h"
+#include "render/gl_loader.h"
 
 #include <GL/glew.h>
 

@@ -1,8 +1,8 @@
-#include "gl_program.h"
+#include "render/gl_program.h"
 
 #include <stdexcept>
 
-#include "text_file.h"
+#include "core/io/text_file.h"
 
 namespace neurocloth {
 namespace {

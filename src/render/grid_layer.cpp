@@ -1,8 +1,8 @@
-#include "grid_layer.h"
+#include "render/grid_layer.h"
 
 #include <vector>
 
-#include "render_palette.h"
+#include "render/render_palette.h"
 
 namespace neurocloth {
 namespace {

@@ -7,10 +7,10 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "gl_buffer.h"
-#include "gl_program.h"
-#include "ground_grid.h"
-#include "orbit_camera.h"
+#include "render/gl_buffer.h"
+#include "render/gl_program.h"
+#include "render/ground_grid.h"
+#include "render/orbit_camera.h"
 
 namespace neurocloth {
 

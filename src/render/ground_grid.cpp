@@ -1,9 +1,9 @@
-#include "ground_grid.h"
+#include "render/ground_grid.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "snapshot_framing.h"
+#include "render/snapshot_framing.h"
 
 namespace neurocloth {
 

@@ -4,7 +4,7 @@
 // does not jump while the cloth moves.
 #include <vector>
 
-#include "frame_snapshot.h"
+#include "core/scene/frame_snapshot.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "legend_text.h"
+#include "render/legend_text.h"
 
 namespace neurocloth {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "vec3.h"
+#include "core/base/vec3.h"
 
 namespace neurocloth {
 

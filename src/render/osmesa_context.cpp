@@ -1,5 +1,5 @@
 // No glew.h in this file: glew.h undefines GLAPI, which osmesa.h needs.
-#include "osmesa_context.h"
+#include "render/osmesa_context.h"
 
 #include <GL/osmesa.h>
 
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "gl_loader.h"
+#include "render/gl_loader.h"
 
 // Debian's GLEW asks glvnd's glXGetProcAddressARB for every GL function. With
 // no X display glvnd has no vendor to ask and answers nothing, so glewInit

@@ -3,8 +3,8 @@
 // cursor ray, then the nearest of its three nodes to the hit point. A ray that
 // misses the cloth picks the node nearest the ray within `tolerance`. Pure
 // math on a snapshot: testable without a window.
-#include "frame_snapshot.h"
-#include "orbit_camera.h"
+#include "core/scene/frame_snapshot.h"
+#include "render/orbit_camera.h"
 
 namespace neurocloth {
 

@@ -6,8 +6,8 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "renderer.h"
-#include "text_file.h"
+#include "core/io/text_file.h"
+#include "render/renderer.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "renderer.h"
+#include "render/renderer.h"
 
 #include <GL/glew.h>
 
@@ -7,14 +7,14 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "background_cache.h"
-#include "cloth_shading.h"
-#include "collider_meshes.h"
-#include "gl_buffer.h"
-#include "gl_program.h"
-#include "grid_layer.h"
-#include "legend_text.h"
-#include "render_palette.h"
+#include "render/background_cache.h"
+#include "render/cloth_shading.h"
+#include "render/collider_meshes.h"
+#include "render/gl_buffer.h"
+#include "render/gl_program.h"
+#include "render/grid_layer.h"
+#include "render/legend_text.h"
+#include "render/render_palette.h"
 
 namespace neurocloth {
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "frame_snapshot.h"
-#include "orbit_camera.h"
+#include "core/scene/frame_snapshot.h"
+#include "render/orbit_camera.h"
 
 namespace neurocloth {
 

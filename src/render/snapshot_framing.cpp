@@ -1,4 +1,4 @@
-#include "snapshot_framing.h"
+#include "render/snapshot_framing.h"
 
 #include <cmath>
 #include <type_traits>

@@ -1,8 +1,8 @@
 #pragma once
 // What a snapshot occupies in space, and the camera that shows all of it: the
 // default view of the headless snapshots (and of the window's "frame" action).
-#include "frame_snapshot.h"
-#include "orbit_camera.h"
+#include "core/scene/frame_snapshot.h"
+#include "render/orbit_camera.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "command_queue.h"
+#include "runtime/command_queue.h"
 
 namespace neurocloth {
 

@@ -7,7 +7,7 @@
 #include <deque>
 #include <mutex>
 
-#include "sim_command.h"
+#include "runtime/sim_command.h"
 
 namespace neurocloth {
 

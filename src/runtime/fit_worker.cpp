@@ -1,9 +1,9 @@
-#include "fit_worker.h"
+#include "runtime/fit_worker.h"
 
 #include <cmath>
 #include <exception>
 
-#include "input_starts.h"
+#include "learn/input_starts.h"
 
 namespace neurocloth {
 

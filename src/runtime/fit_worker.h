@@ -21,12 +21,12 @@
 #include <utility>
 #include <vector>
 
-#include "fit_problem.h"
-#include "online_adaptation.h"
-#include "optimizer.h"
-#include "reference_motion.h"
-#include "scene.h"
-#include "sim_command.h"
+#include "core/scene/scene.h"
+#include "learn/fit_problem.h"
+#include "learn/online_adaptation.h"
+#include "learn/optimizer.h"
+#include "learn/reference_motion.h"
+#include "runtime/sim_command.h"
 
 namespace neurocloth {
 

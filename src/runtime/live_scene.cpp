@@ -1,4 +1,4 @@
-#include "live_scene.h"
+#include "runtime/live_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <sstream>
 #include <utility>
 
-#include "input_error.h"
-#include "live_scene_run.h"
-#include "physical_limits.h"
-#include "stability.h"
+#include "core/integrators/stability.h"
+#include "core/io/input_error.h"
+#include "core/io/physical_limits.h"
+#include "runtime/live_scene_run.h"
 
 namespace neurocloth {
 

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "frame_snapshot.h"
-#include "fuzzy_material.h"
-#include "scene.h"
-#include "sim_command.h"
-#include "simulation_thread.h"
+#include "core/scene/frame_snapshot.h"
+#include "core/scene/fuzzy_material.h"
+#include "core/scene/scene.h"
+#include "runtime/sim_command.h"
+#include "runtime/simulation_thread.h"
 
 namespace neurocloth {
 

@@ -6,9 +6,10 @@
 #include <string>
 #include <utility>
 
-#include "input_error.h"
-#include "live_scene_run.h"
-#include "physical_limits.h"
+#include "core/io/input_error.h"
+#include "core/io/physical_limits.h"
+#include "core/network/material_limits.h"
+#include "runtime/live_scene_run.h"
 
 namespace neurocloth {
 using namespace live_detail;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "live_scene.h"
+#include "runtime/live_scene.h"
 
 namespace neurocloth {
 namespace live_detail {

@@ -3,7 +3,7 @@
 // (a viscosity of 5000, a dt of 2 s) is refused rather than run into a divergence.
 #include <sstream>
 
-#include "live_scene.h"
+#include "runtime/live_scene.h"
 
 namespace neurocloth {
 

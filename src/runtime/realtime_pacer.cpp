@@ -1,4 +1,4 @@
-#include "realtime_pacer.h"
+#include "runtime/realtime_pacer.h"
 
 #include <algorithm>
 #include <cmath>

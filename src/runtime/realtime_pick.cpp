@@ -1,4 +1,4 @@
-#include "realtime_pick.h"
+#include "runtime/realtime_pick.h"
 
 #include <algorithm>
 #include <chrono>

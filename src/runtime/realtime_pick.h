@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "scene.h"
+#include "core/scene/scene.h"
 #include "tradeoff/trade_table.h"
 
 namespace neurocloth {

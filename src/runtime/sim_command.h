@@ -8,12 +8,12 @@
 #include <variant>
 #include <vector>
 
-#include "fuzzy_material.h"
-#include "integrator.h"
-#include "material.h"
-#include "parameter_id.h"
-#include "solver_settings.h"
-#include "vec3.h"
+#include "core/base/vec3.h"
+#include "core/integrators/integrator.h"
+#include "core/network/material.h"
+#include "core/network/parameter_id.h"
+#include "core/scene/fuzzy_material.h"
+#include "core/simulation/solver_settings.h"
 
 namespace neurocloth {
 

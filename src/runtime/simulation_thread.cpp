@@ -2,7 +2,7 @@
 // slice of simulated time (paced to the wall clock or flat out), publish a
 // snapshot and the status; repeat. Nothing here waits for a reader: snapshots
 // and status are handed over by swapping a pointer (snapshot_exchange.h).
-#include "simulation_thread.h"
+#include "runtime/simulation_thread.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,10 +14,10 @@
 #include <thread>
 #include <variant>
 
-#include "command_queue.h"
-#include "live_scene.h"
-#include "realtime_pacer.h"
-#include "snapshot_exchange.h"
+#include "runtime/command_queue.h"
+#include "runtime/live_scene.h"
+#include "runtime/realtime_pacer.h"
+#include "runtime/snapshot_exchange.h"
 
 namespace neurocloth {
 

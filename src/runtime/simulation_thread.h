@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "frame_snapshot.h"
-#include "scene.h"
-#include "sim_command.h"
+#include "core/scene/frame_snapshot.h"
+#include "core/scene/scene.h"
+#include "runtime/sim_command.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "snapshot_exchange.h"
+#include "runtime/snapshot_exchange.h"
 
 #include <utility>
 

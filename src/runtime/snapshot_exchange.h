@@ -24,7 +24,7 @@
 #include <mutex>
 #include <vector>
 
-#include "frame_snapshot.h"
+#include "core/scene/frame_snapshot.h"
 
 namespace neurocloth {
 

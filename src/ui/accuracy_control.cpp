@@ -1,4 +1,4 @@
-#include "accuracy_control.h"
+#include "ui/accuracy_control.h"
 
 #include <algorithm>
 #include <cmath>

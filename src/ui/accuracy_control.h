@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "sim_command.h"
+#include "runtime/sim_command.h"
 #include "tradeoff/trade_table.h"
 
 namespace neurocloth {

@@ -2,8 +2,8 @@
 // (they must be seen), then the panels as collapsing sections.
 #include <imgui.h>
 
-#include "learning_session.h"
-#include "panels.h"
+#include "ui/learning_session.h"
+#include "ui/panels.h"
 
 namespace neurocloth {
 

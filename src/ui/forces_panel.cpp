@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <string>
 
-#include "panels.h"
-#include "parameter_input.h"
+#include "ui/panels.h"
+#include "ui/parameter_input.h"
 
 namespace neurocloth {
 

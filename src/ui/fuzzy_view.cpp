@@ -1,4 +1,4 @@
-#include "fuzzy_view.h"
+#include "ui/fuzzy_view.h"
 
 namespace neurocloth {
 

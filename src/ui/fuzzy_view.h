@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "fuzzy_material.h"
+#include "core/scene/fuzzy_material.h"
 
 namespace neurocloth {
 

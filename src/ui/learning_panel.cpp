@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "learning_session.h"
-#include "panels.h"
+#include "ui/learning_session.h"
+#include "ui/panels.h"
 
 namespace neurocloth {
 

@@ -1,12 +1,12 @@
-#include "learning_session.h"
+#include "ui/learning_session.h"
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <sstream>
 
-#include "reference_pose.h"
-#include "ui_values.h"
+#include "learn/reference_pose.h"
+#include "ui/ui_values.h"
 
 namespace neurocloth {
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "fit_worker.h"
-#include "frame_snapshot.h"
-#include "panel_context.h"
-#include "reference_motion.h"
+#include "core/scene/frame_snapshot.h"
+#include "learn/reference_motion.h"
+#include "runtime/fit_worker.h"
+#include "ui/panel_context.h"
 
 namespace neurocloth {
 

@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <string>
 
-#include "fuzzy_material.h"
-#include "membership_plot.h"
-#include "panels.h"
-#include "parameter_input.h"
+#include "core/scene/fuzzy_material.h"
+#include "ui/membership_plot.h"
+#include "ui/panels.h"
+#include "ui/parameter_input.h"
 
 namespace neurocloth {
 

@@ -1,10 +1,10 @@
-#include "membership_plot.h"
+#include "ui/membership_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "fuzzy_view.h"
+#include "ui/fuzzy_view.h"
 
 namespace neurocloth {
 

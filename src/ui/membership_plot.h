@@ -3,7 +3,7 @@
 // over the variable's range, each in its own colour, with a value marked.
 #include <imgui.h>
 
-#include "fuzzy/linguistic_variable.h"
+#include "core/fuzzy/linguistic_variable.h"
 
 namespace neurocloth {
 

@@ -5,12 +5,12 @@
 #include <functional>
 #include <string>
 
-#include "frame_snapshot.h"
-#include "renderer.h"
-#include "scene_info.h"
-#include "sim_command.h"
-#include "simulation_thread.h"
-#include "ui_values.h"
+#include "core/scene/frame_snapshot.h"
+#include "render/renderer.h"
+#include "runtime/sim_command.h"
+#include "runtime/simulation_thread.h"
+#include "ui/scene_info.h"
+#include "ui/ui_values.h"
 
 namespace neurocloth {
 

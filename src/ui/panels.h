@@ -2,7 +2,7 @@
 // The panels of the control window, one file each. Each draws its widgets
 // for one frame: it reads ctx.status / ctx.snapshot, edits ctx.values and
 // posts commands. None of them touches the simulation.
-#include "panel_context.h"
+#include "ui/panel_context.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "parameter_input.h"
+#include "ui/parameter_input.h"
 
 #include <imgui.h>
 

@@ -4,8 +4,8 @@
 // with its valid range shown and the simulation keeps its last good value.
 #include <string>
 
-#include "panel_context.h"
-#include "ui_requests.h"
+#include "ui/panel_context.h"
+#include "ui/ui_requests.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "scene_info.h"
+#include "ui/scene_info.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "accuracy_control.h"
-#include "fuzzy_view.h"
-#include "realtime_pick.h"
-#include "scene.h"
-#include "simulation_thread.h"
+#include "core/scene/scene.h"
+#include "runtime/realtime_pick.h"
+#include "runtime/simulation_thread.h"
+#include "ui/accuracy_control.h"
+#include "ui/fuzzy_view.h"
 
 namespace neurocloth {
 

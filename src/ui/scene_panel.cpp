@@ -2,8 +2,8 @@
 // and the scene's active modules with the keys they were declared with.
 #include <imgui.h>
 
-#include "panels.h"
-#include "ui_requests.h"
+#include "ui/panels.h"
+#include "ui/ui_requests.h"
 
 namespace neurocloth {
 

@@ -6,9 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include "panels.h"
-#include "parameter_input.h"
-#include "ui_requests.h"
+#include "ui/panels.h"
+#include "ui/parameter_input.h"
+#include "ui/ui_requests.h"
 
 namespace neurocloth {
 

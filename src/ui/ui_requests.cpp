@@ -1,12 +1,12 @@
-#include "ui_requests.h"
+#include "ui/ui_requests.h"
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iterator>
 
-#include "accuracy_control.h"
-#include "input_error.h"
+#include "core/io/input_error.h"
+#include "ui/accuracy_control.h"
 
 namespace neurocloth {
 

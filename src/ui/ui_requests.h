@@ -6,7 +6,7 @@
 // these, so a scripted change is handled exactly as a typed one.
 #include <string>
 
-#include "panel_context.h"
+#include "ui/panel_context.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "ui_values.h"
+#include "ui/ui_values.h"
 
 #include <algorithm>
 #include <cstring>

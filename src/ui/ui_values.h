@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "simulation_thread.h"
+#include "runtime/simulation_thread.h"
 
 namespace neurocloth {
 

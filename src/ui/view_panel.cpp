@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "panels.h"
+#include "ui/panels.h"
 
 namespace neurocloth {
 

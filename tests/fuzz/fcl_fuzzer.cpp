@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_contract.h"
-#include "fuzzy/fcl_reader.h"
-#include "fuzzy/inference.h"
-#include "fuzzy_contract.h"
+#include "core/fuzzy/formats/fcl_reader.h"
+#include "core/fuzzy/inference.h"
+#include "fuzz/fuzz_contract.h"
+#include "fuzz/fuzzy_contract.h"
 
 namespace neurocloth::fuzz {
 namespace {

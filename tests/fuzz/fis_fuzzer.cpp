@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_contract.h"
-#include "fuzzy/fis_reader.h"
-#include "fuzzy/fis_writer.h"
-#include "fuzzy/inference.h"
-#include "fuzzy_contract.h"
+#include "core/fuzzy/formats/fis_reader.h"
+#include "core/fuzzy/formats/fis_writer.h"
+#include "core/fuzzy/inference.h"
+#include "fuzz/fuzz_contract.h"
+#include "fuzz/fuzzy_contract.h"
 
 namespace neurocloth::fuzz {
 namespace {

@@ -1,4 +1,4 @@
-#include "fuzz_contract.h"
+#include "fuzz/fuzz_contract.h"
 
 #include <cxxabi.h>
 

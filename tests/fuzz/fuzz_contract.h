@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "input_error.h"
-#include "vec3.h"
+#include "core/base/vec3.h"
+#include "core/io/input_error.h"
 
 namespace neurocloth::fuzz {
 

@@ -1,11 +1,11 @@
-#include "fuzz_input_file.h"
+#include "fuzz/fuzz_input_file.h"
 
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 
-#include "fuzz_contract.h"
+#include "fuzz/fuzz_contract.h"
 
 namespace neurocloth::fuzz {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "fuzz_contract.h"
-#include "fuzzy/linguistic_variable.h"
+#include "core/fuzzy/linguistic_variable.h"
+#include "fuzz/fuzz_contract.h"
 
 namespace neurocloth::fuzz {
 

@@ -1,4 +1,4 @@
-#include "json_duplicate_keys.h"
+#include "fuzz/json_duplicate_keys.h"
 
 #include <nlohmann/json.hpp>
 

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "fuzz_contract.h"
-#include "fuzz_input_file.h"
-#include "obj_mesh_builder.h"
+#include "core/scene/obj_mesh_builder.h"
+#include "fuzz/fuzz_contract.h"
+#include "fuzz/fuzz_input_file.h"
 
 namespace neurocloth::fuzz {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_contract.h"
-#include "reference_motion.h"
+#include "fuzz/fuzz_contract.h"
+#include "learn/reference_motion.h"
 
 namespace neurocloth::fuzz {
 namespace {

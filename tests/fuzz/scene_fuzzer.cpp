@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "asset_paths.h"
-#include "fuzz_contract.h"
-#include "json_duplicate_keys.h"
-#include "scene.h"
+#include "core/io/asset_paths.h"
+#include "core/scene/scene.h"
+#include "fuzz/fuzz_contract.h"
+#include "fuzz/json_duplicate_keys.h"
 
 namespace neurocloth::fuzz {
 namespace {

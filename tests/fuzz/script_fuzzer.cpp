@@ -1,4 +1,4 @@
-// Fuzzes the window's script reader, load_script() (src/app/viewer_script.cpp,
+// Fuzzes the window's script reader, load_script() (src/app/viewer/viewer_script.cpp,
 // compiled into this harness alone). It takes a path, so the bytes go through
 // this process's own file. An accepted script must hold finite times, in
 // order, finite coordinates and amounts, and no key written twice.
@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <string>
 
-#include "fuzz_contract.h"
-#include "fuzz_input_file.h"
-#include "json_duplicate_keys.h"
-#include "viewer_script.h"
+#include "app/viewer/viewer_script.h"
+#include "fuzz/fuzz_contract.h"
+#include "fuzz/fuzz_input_file.h"
+#include "fuzz/json_duplicate_keys.h"
 
 namespace neurocloth::fuzz {
 namespace {

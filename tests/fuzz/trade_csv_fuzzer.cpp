@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_contract.h"
+#include "fuzz/fuzz_contract.h"
 #include "tradeoff/trade_csv.h"
 
 namespace neurocloth::fuzz {

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "render_test_support.h"
-#include "snapshot_framing.h"
+#include "render/snapshot_framing.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth {
 namespace {

@@ -1,12 +1,12 @@
 // Normals and strain from a snapshot, against what a flat or uniformly
 // stretched cloth must give.
-#include "cloth_shading.h"
+#include "render/cloth_shading.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth {
 namespace {

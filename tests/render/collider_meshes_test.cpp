@@ -1,7 +1,7 @@
 // Collider meshes: every vertex on the solid's surface, normals pointing out,
 // and triangles wound counter-clockwise seen from outside (so that the
 // renderer's front side is the outside).
-#include "collider_meshes.h"
+#include "render/collider_meshes.h"
 
 #include <gtest/gtest.h>
 

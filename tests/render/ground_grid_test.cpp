@@ -1,10 +1,10 @@
 // The ground grid lies at y = 0 or below the scene, or on a floor plane.
-#include "ground_grid.h"
+#include "render/ground_grid.h"
 
 #include <gtest/gtest.h>
 
-#include "render_test_support.h"
-#include "snapshot_framing.h"
+#include "render/snapshot_framing.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth {
 namespace {

@@ -1,5 +1,5 @@
 // The legend's segment font writes what it is asked inside the box it claims.
-#include "legend_text.h"
+#include "render/legend_text.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The orbit camera is pure math: rays, projection and framing checked against
 // each other and against the matrices the renderer uploads.
-#include "orbit_camera.h"
+#include "render/orbit_camera.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Picking is pure math on a snapshot: the shipped hanging cloth at rest is a
 // flat 20 x 20 grid at y = 1 (spacing 0.05 m), seen from known cameras.
-#include "picking.h"
+#include "render/picking.h"
 
 #include <gtest/gtest.h>
 
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth {
 namespace {

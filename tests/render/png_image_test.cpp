@@ -5,7 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "renderer.h"
+#include "render/renderer.h"
 
 namespace neurocloth {
 namespace {

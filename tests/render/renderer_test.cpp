@@ -1,7 +1,7 @@
 // Headless frames through OSMesa: against committed reference images, and
 // against facts that do not depend on exact pixels (where the cloth must
 // appear, which side shows, what the strain map and the overlays add).
-#include "renderer.h"
+#include "render/renderer.h"
 
 #include <GL/glew.h>
 #include <dlfcn.h>
@@ -11,10 +11,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "cloth_shading.h"
-#include "gl_program.h"
-#include "reference_image.h"
-#include "snapshot_framing.h"
+#include "render/cloth_shading.h"
+#include "render/gl_program.h"
+#include "render/snapshot_framing.h"
+#include "support/reference_image.h"
 
 namespace neurocloth {
 namespace {

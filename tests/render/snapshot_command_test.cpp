@@ -2,10 +2,10 @@
 // exit codes, and no file left behind on bad input.
 #include <gtest/gtest.h>
 
-#include "cli_fixture.h"
-#include "render_test_support.h"
-#include "renderer.h"
-#include "snapshot_framing.h"
+#include "render/renderer.h"
+#include "render/snapshot_framing.h"
+#include "support/cli_fixture.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth::cli_test {
 namespace {

@@ -1,11 +1,11 @@
 // The default snapshot camera shows the whole cloth and its colliders.
-#include "snapshot_framing.h"
+#include "render/snapshot_framing.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 namespace neurocloth {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "fuzzy_rule.h"
-#include "linguistic_variable.h"
+#include "core/fuzzy/fuzzy_rule.h"
+#include "core/fuzzy/linguistic_variable.h"
 
 namespace neurocloth::fuzzy {
 

@@ -1,4 +1,4 @@
-#include "inference.h"
+#include "core/fuzzy/inference.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "dual.h"
+#include "core/fuzzy/dual.h"
 
 namespace neurocloth::fuzzy {
 namespace {

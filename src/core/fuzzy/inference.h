@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "fuzzy_system.h"
+#include "core/fuzzy/fuzzy_system.h"
 
 namespace neurocloth::fuzzy {
 

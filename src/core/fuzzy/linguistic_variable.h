@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "membership_function.h"
+#include "core/fuzzy/membership_function.h"
 
 namespace neurocloth::fuzzy {
 

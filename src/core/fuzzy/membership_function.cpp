@@ -1,10 +1,10 @@
-#include "membership_function.h"
+#include "core/fuzzy/membership_function.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "dual.h"
-#include "fuzzy_rule.h"
+#include "core/fuzzy/dual.h"
+#include "core/fuzzy/fuzzy_rule.h"
 
 namespace neurocloth::fuzzy {
 

@@ -1,4 +1,4 @@
-#include "term_degrees.h"
+#include "core/fuzzy/term_degrees.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "linguistic_variable.h"
+#include "core/fuzzy/linguistic_variable.h"
 
 namespace neurocloth::fuzzy {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "../cloth_network.h"
-#include "module_factories.h"
+#include "core/modules/module_factories.h"
+#include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {

@@ -28,8 +28,8 @@
 #include <cmath>
 #include <limits>
 
-#include "../cloth_network.h"
-#include "module_factories.h"
+#include "core/modules/module_factories.h"
+#include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {

@@ -2,9 +2,9 @@
 // One factory per module type; each lives in the file named after its module.
 #include <memory>
 
-#include "../cloth_topology.h"
-#include "module_specs.h"
-#include "scene_module.h"
+#include "core/modules/module_specs.h"
+#include "core/network/cloth_topology.h"
+#include "core/network/scene_module.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "module_reader.h"
+#include "core/modules/module_reader.h"
 
 #include <algorithm>
 #include <functional>

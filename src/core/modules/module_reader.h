@@ -3,9 +3,9 @@
 // the file, the field (modules[i].key) and its line.
 #include <vector>
 
-#include "../cloth_topology.h"
-#include "../json_fields.h"
-#include "module_specs.h"
+#include "core/io/json_fields.h"
+#include "core/modules/module_specs.h"
+#include "core/network/cloth_topology.h"
 
 namespace neurocloth {
 

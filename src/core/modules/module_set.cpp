@@ -1,9 +1,9 @@
-#include "module_set.h"
+#include "core/modules/module_set.h"
 
 #include <algorithm>
 #include <type_traits>
 
-#include "module_factories.h"
+#include "core/modules/module_factories.h"
 
 namespace neurocloth {
 

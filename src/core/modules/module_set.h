@@ -3,9 +3,9 @@
 #include <memory>
 #include <vector>
 
-#include "../cloth_topology.h"
-#include "module_specs.h"
-#include "scene_module.h"
+#include "core/modules/module_specs.h"
+#include "core/network/cloth_topology.h"
+#include "core/network/scene_module.h"
 
 namespace neurocloth {
 

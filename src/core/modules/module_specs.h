@@ -8,7 +8,7 @@
 #include <variant>
 #include <vector>
 
-#include "../vec3.h"
+#include "core/base/vec3.h"
 
 namespace neurocloth {
 

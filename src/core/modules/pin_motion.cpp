@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../cloth_network.h"
-#include "module_factories.h"
+#include "core/modules/module_factories.h"
+#include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {

@@ -27,9 +27,9 @@
 #include <string>
 #include <vector>
 
-#include "../cloth_network.h"
-#include "module_factories.h"
-#include "spatial_hash.h"
+#include "core/modules/module_factories.h"
+#include "core/modules/spatial_hash.h"
+#include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {

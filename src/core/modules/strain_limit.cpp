@@ -19,8 +19,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "../cloth_network.h"
-#include "module_factories.h"
+#include "core/modules/module_factories.h"
+#include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {

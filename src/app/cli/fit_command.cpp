@@ -1,0 +1,298 @@
+// neurocloth-cli fit: the network's weights fitted to a reference motion
+// (paper eq. 18-19) by L-BFGS or gradient descent, the parameters' uncertainty
+// at the optimum, and FITTED.json with its curves (docs/learning.md).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cli/commands.h"
+#include "app/cli/long_run.h"
+#include "app/cli/motion_outputs.h"
+#include "app/cli/progress_line.h"
+#include "chart/loglog_chart.h"
+#include "core/io/input_error.h"
+#include "core/scene/scene.h"
+#include "learn/fit_problem.h"
+#include "learn/fitted_output.h"
+#include "learn/input_starts.h"
+#include "learn/optimizer.h"
+#include "learn/reference_motion.h"
+#include "learn/uncertainty.h"
+
+namespace neurocloth {
+namespace {
+
+// Every option checked before anything is read or run: InputError naming it.
+OptimizerMethod check_options(const FitOptions& o) {
+  auto refuse = [](const char* field, const std::string& why) {
+    throw InputError("command line", field, why);
+  };
+  OptimizerMethod method{};
+  if (!parse_optimizer_method(o.optimizer, method))
+    refuse("--optimizer", "unknown optimizer '" + o.optimizer + "' (expected lbfgs or gd)");
+  if (o.max_iterations < 1)
+    refuse("--max-iterations", "must be at least 1 (got " + std::to_string(o.max_iterations) + ")");
+  if (!(o.time_budget >= 0) || !std::isfinite(o.time_budget))
+    refuse("--time-budget", "must be a finite number of seconds >= 0 (0: none)");
+  if (!(o.smoothness >= 0) || !std::isfinite(o.smoothness))
+    refuse("--smoothness", "must be a finite number >= 0");
+  if (o.smoothness > 0 && !o.per_element)
+    refuse("--smoothness", "smooths per-element weights: it needs --per-element");
+  if (o.smoothness > 0 && o.online)
+    refuse("--smoothness", "an online fit has no regulariser: drop --smoothness or --online");
+  if (!(o.tape_budget_mb > 0) || !(o.tape_budget_mb < 1e9))
+    refuse("--tape-budget", "must be a number of MB > 0");
+  if (o.out.empty()) refuse("--out", "must name the FITTED.json to write");
+  const std::filesystem::path folder = std::filesystem::absolute(o.out).parent_path();
+  if (!std::filesystem::is_directory(folder))
+    refuse("--out", "the folder " + folder.string() + " does not exist");
+  const FittedFiles files = fitted_file_names(o.out);
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png, files.example})
+    check_output_path("--out", f, {o.scene, o.reference});
+  return method;
+}
+
+}  // namespace
+
+// Once the scene is read: its side files are inputs too.
+void check_fit_outputs(const FitOptions& o, const Scene& scene) {
+  const FittedFiles files = fitted_file_names(o.out);
+  for (const std::string& f : {files.scene, files.weights, files.csv, files.png, files.example})
+    check_output_path("--out", f, input_files(scene));
+}
+
+namespace {
+
+// What a block stands for in one column (progress line, CSV): its value, or
+// for a per-element block the geometric (log space) or arithmetic mean.
+struct Column {
+  std::string name;
+  const FitBlock* block;
+};
+
+std::vector<Column> columns_of(const FitProblem& problem) {
+  std::vector<Column> out;
+  for (const FitBlock& b : problem.blocks())
+    out.push_back({b.count == 1 ? b.name : b.name + (b.log_space ? "_geomean" : "_mean"), &b});
+  return out;
+}
+
+double column_value(const Column& c, const Eigen::VectorXd& theta) {
+  const FitBlock& b = *c.block;
+  // A plain loop: GCC 12 misreads Eigen's AVX-512 reductions as uninitialised.
+  double sum = 0;
+  for (std::size_t i = b.offset; i < b.offset + b.count; ++i)
+    sum += theta[Eigen::Index(i)];
+  const double mean = sum / double(b.count);
+  return b.log_space ? std::exp(mean) : mean;
+}
+
+// The fit's fields of the progress line: loss, RMS and each column's value.
+std::string progress_details(const IterationInfo& it, const Eigen::VectorXd& theta, double rms_m,
+                             const std::vector<Column>& columns) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "loss %.6g  RMS %.4g mm", it.loss, rms_m * 1e3);
+  std::string line = buf;
+  for (const Column& c : columns) {
+    std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, theta));
+    line += buf;
+  }
+  return line;
+}
+
+std::vector<UncertainParameter> unknowns_of(const FitProblem& problem) {
+  std::vector<UncertainParameter> out(problem.size());
+  for (const FitBlock& b : problem.blocks())
+    for (std::size_t i = 0; i < b.count; ++i)
+      out[b.offset + i] = {b.count == 1 ? b.name : b.name + "[" + std::to_string(i) + "]",
+                           b.log_space};
+  return out;
+}
+
+void print_uncertainty(const UncertaintyReport& r, const FitProblem& problem) {
+  if (!r.computed) {
+    std::printf("uncertainty: %s\n", r.skipped.c_str());
+    return;
+  }
+  std::printf(
+      "uncertainty (Gauss-Newton: covariance = s^2 H^-1, s^2 = 2E/(N-P) = %.4g m^2, N = %zu, "
+      "%d gradient calls):\n",
+      r.residual_variance, r.data, r.gradient_calls);
+  std::vector<std::string> units(problem.size());
+  for (const FitBlock& b : problem.blocks())
+    for (std::size_t i = 0; i < b.count; ++i)
+      units[b.offset + i] = b.unit;
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const ParameterUncertainty& p = r.parameters[i];
+    std::printf("  %-24s %12.6g %-6s +- %-10.3g (%6.3g%%)  %s\n", p.name.c_str(), p.value,
+                units[i].c_str(), p.sd, 100 * p.relative_sd, to_string(p.verdict));
+  }
+  if (r.flat_directions > 0)
+    std::printf(
+        "  %d direction(s) the data does not see: the parameters marked 'not determined' can "
+        "change together without changing the motion\n",
+        r.flat_directions);
+}
+
+// The note's parameter list: each unknown with its uncertainty when there is
+// one, else each column's value.
+std::vector<ParameterUncertainty> summary_parameters(const UncertaintyReport& r,
+                                                     const std::vector<Column>& columns,
+                                                     const Eigen::VectorXd& theta) {
+  if (r.computed) return r.parameters;
+  std::vector<ParameterUncertainty> out;
+  for (const Column& c : columns) {
+    ParameterUncertainty p;
+    p.name = c.name;
+    p.value = column_value(c, theta);
+    p.sd = p.relative_sd = std::nan("");
+    out.push_back(p);
+  }
+  return out;
+}
+
+int exit_code(StopReason reason) {
+  switch (reason) {
+    case StopReason::stopped:
+      return kExitInterrupted;
+    case StopReason::not_finite:
+      return kExitDiverged;
+    default:
+      return kExitOk;
+  }
+}
+
+}  // namespace
+
+// Checks the outputs against the scene's inputs first (check_fit_outputs).
+FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
+  check_fit_outputs(o, scene);
+  const ReferenceMotion reference =
+      read_reference(o.reference, scene.topology.rest_positions.size());
+  FitSettings settings;
+  if (!o.params.empty()) settings.params = o.params;
+  settings.per_element = o.per_element;
+  settings.smoothness = o.smoothness;
+  settings.tape_budget_bytes = std::size_t(o.tape_budget_mb * double(1 << 20));
+  return FitProblem(scene, reference, settings);
+}
+
+std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta) {
+  std::vector<double> v;
+  for (const Column& c : columns_of(problem))
+    v.push_back(column_value(c, theta));
+  return v;
+}
+
+std::vector<std::string> block_names(const FitProblem& problem) {
+  std::vector<std::string> v;
+  for (const Column& c : columns_of(problem))
+    v.push_back(c.name);
+  return v;
+}
+
+int run_fit(const FitOptions& o) {
+  // The online mode shares the tape budget and the outputs: checked before
+  // anything runs, whichever mode.
+  OptimizerOptions opt;
+  opt.method = check_options(o);
+  if (o.online) return run_fit_online(o);
+  opt.max_iterations = o.max_iterations;
+  opt.time_budget = o.time_budget;
+
+  const Scene scene = load_scene(o.scene);
+  FitProblem problem = load_fit_problem(o, scene);
+  const std::vector<Column> columns = columns_of(problem);
+  const double observations = double(problem.observations());
+  std::printf("fit: %s to %s: %zu unknowns, %zu observed positions over %g s, %s\n",
+              scene.name.c_str(), o.reference.c_str(), problem.size(), problem.observations(),
+              problem.duration(), to_string(opt.method));
+  std::fflush(stdout);
+
+  const Objective objective = [&](const Eigen::VectorXd& theta, Eigen::VectorXd* gradient) {
+    return problem.loss(theta, gradient);
+  };
+  // The data term's RMS: from the loss itself when there is no regulariser.
+  auto rms_of = [&](double loss, const Eigen::VectorXd& theta) {
+    return o.smoothness > 0 ? problem.rms_error(theta) : std::sqrt(2 * loss / observations);
+  };
+  FitHistory history;
+  for (const Column& c : columns)
+    history.columns.push_back(c.name);
+  ProgressLine progress(o.max_iterations, o.time_budget);
+  const InterruptScope ctrl_c;
+  opt.should_stop = [] { return InterruptScope::interrupted(); };
+  const InputStarts starts = input_fit_starts(problem);
+  if (!starts.said.empty()) std::printf("%s\n", starts.said.c_str());
+  const OptimizerResult result =
+      minimize_from(objective, starts.starts, opt, [&](const IterationInfo& it) {
+        const Eigen::VectorXd theta = problem.inside_limits(it.theta);
+        FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, theta), it.seconds, {}};
+        for (const Column& c : columns)
+          row.parameters.push_back(column_value(c, theta));
+        history.rows.push_back(row);
+        progress.show(it, progress_details(it, theta, row.rms_m, columns));
+        return !InterruptScope::interrupted();
+      });
+  progress.close();
+  std::printf("stopped (%s): %s\n", to_string(result.reason), result.message.c_str());
+  std::printf("memory: the tape held at most %.3g MB (--tape-budget %g MB)\n",
+              double(problem.peak_tape_bytes()) / double(1 << 20), o.tape_budget_mb);
+  if (std::isnan(result.best_loss) && result.reason == StopReason::stopped) {
+    std::fprintf(stderr, "interrupted before the first evaluation; nothing written\n");
+    return kExitInterrupted;
+  }
+  if (std::isnan(result.best_loss)) {
+    std::fprintf(stderr,
+                 "error: the scene's own parameters already give a non-finite loss; nothing "
+                 "written\n");
+    return kExitDiverged;
+  }
+  // The loss at theta is the loss inside the limits: the values written.
+  const Eigen::VectorXd best = problem.inside_limits(result.best_theta);
+
+  UncertaintyReport uncertainty;
+  if (result.reason == StopReason::stopped) {
+    uncertainty.skipped = "not estimated: the fit was interrupted";
+  } else {
+    uncertainty = estimate_uncertainty(objective, best, result.best_loss,
+                                       3 * problem.observations(), unknowns_of(problem));
+    if (!uncertainty.computed && uncertainty.skipped.empty()) uncertainty.skipped = "not estimated";
+  }
+  print_uncertainty(uncertainty, problem);
+  const std::vector<std::string> words = problem.inputs_in_words(best);
+  for (const std::string& w : words)
+    std::printf("in words: %s\n", w.c_str());
+
+  FitSummary summary;
+  summary.reference = o.reference;
+  summary.optimizer = to_string(opt.method);
+  summary.stop_reason = to_string(result.reason);
+  summary.stop_message = result.message;
+  summary.iterations = result.iterations;
+  summary.loss = result.best_loss;
+  summary.rms_m = rms_of(result.best_loss, best);
+  summary.parameters = summary_parameters(uncertainty, columns, best);
+  summary.words = words;
+  summary.uncertainty =
+      uncertainty.computed
+          ? "Gauss-Newton: covariance = s^2 H^-1 with H by central differences of the gradient"
+          : uncertainty.skipped;
+  const FittedModel model{problem.fitted_scene(best), problem.element_weights(best),
+                          problem.element_rest_lengths(best)};
+  const FittedFiles files = write_fit_outputs(scene, model, summary, history, o.out);
+  release_chart_caches();  // the one chart of this process is drawn
+  std::printf("wrote %s%s%s, %s, %s (loss %.6g, RMS %.4g mm)\n", files.scene.c_str(),
+              files.weights.empty() ? "" : ", ", files.weights.c_str(), files.csv.c_str(),
+              files.png.c_str(), summary.loss, summary.rms_m * 1e3);
+  if (!files.example.empty())
+    std::printf(
+        "wrote %s: this fit as an example for tune-rules (the scene's words and the "
+        "fitted values)\n",
+        files.example.c_str());
+  return exit_code(result.reason);
+}
+
+}  // namespace neurocloth

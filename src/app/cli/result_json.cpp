@@ -1,0 +1,65 @@
+#include "app/cli/result_json.h"
+
+namespace neurocloth {
+
+nlohmann::json state_json(const ClothState& s, const NodeNumbering& numbering, bool velocities) {
+  nlohmann::json a = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const auto i = static_cast<std::size_t>(numbering.node(static_cast<int>(k)));
+    const Vec3 v = velocities ? s.velocity(i) : s.position(i);
+    a.push_back({v.x(), v.y(), v.z()});
+  }
+  return a;
+}
+
+nlohmann::json energy_json(const Energy& e) {
+  return {{"kinetic", e.kinetic},
+          {"potential", e.potential()},
+          {"total", e.total()},
+          {"spring", e.spring},
+          {"gravity", e.gravity}};
+}
+
+nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& numbering,
+                                 const std::string& scene_path, double wall_seconds) {
+  const SolverSettings& s = sim.settings();
+  nlohmann::json doc;
+  doc["status"] = to_string(sim.status());
+  if (sim.status() != RunStatus::ok) doc["reason"] = sim.divergence_reason();
+  doc["scene"] = scene_path;
+  doc["integrator"] = to_string(s.integrator);
+  doc["precision"] = to_string(s.precision);
+  doc["adaptive"] = s.adaptive;
+  doc["dt"] = s.dt;
+  doc["time"] = sim.time();
+  doc["steps"] = sim.steps();
+  doc["rejected_steps"] = sim.rejected_steps();
+  doc["force_evaluations"] = sim.force_evaluations();
+  doc["cg_iterations"] = sim.cg_iterations();
+  doc["wall_seconds"] = wall_seconds;
+  doc["nodes"] = sim.network().node_count();
+  doc["springs"] = sim.network().spring_count();
+  doc["energy"] = energy_json(sim.energy());
+  // The modules the scene declared, in the order the step runs them, and what
+  // each cost: the rest of wall_seconds is the network itself.
+  nlohmann::json modules = nlohmann::json::array();
+  double module_seconds = 0;
+  for (const ModuleReport& m : sim.module_reports()) {
+    modules.push_back(
+        {{"type", m.type},
+         {"seconds", m.seconds},
+         {"calls", m.calls},
+         {"state_bytes", m.state_bytes},
+         {"declaration", m.declaration.empty()
+                             ? nlohmann::json()
+                             : nlohmann::json::parse(m.declaration, nullptr, false)}});
+    module_seconds += m.seconds;
+  }
+  doc["modules"] = modules;
+  doc["module_seconds"] = module_seconds;
+  doc["positions"] = state_json(sim.state(), numbering, false);
+  doc["velocities"] = state_json(sim.state(), numbering, true);
+  return doc;
+}
+
+}  // namespace neurocloth

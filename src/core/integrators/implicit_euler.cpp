@@ -1,0 +1,208 @@
+// Linearised backward Euler in the style of Baraff & Witkin (1998):
+//   (M + h D + h^2 K) dv = h (f0 + h (df/dx) v0),   v1 = v0 + dv,  p1 = p0 + h v1
+// with K = -df/dx and D = -df/dv from ImplicitSystem, solved by conjugate
+// gradient preconditioned with a multigrid V-cycle. One Newton iteration per
+// step, first order.
+//
+// One Newton iteration is backward Euler only while the forces stay close to
+// their linearisation over the step. On a very stiff, light cloth a large step
+// breaks that: a flat cloth has no transverse stiffness, falls freely in the
+// linear solve, and lands with its springs stretched a hundred-millionfold
+// beyond their rest force; the next step turns that into runaway energy. So
+// every step checks its linearisation against the forces where it landed and,
+// where it did not hold, walks the step in pieces small enough that it does
+// (the step controller's Table 1 rule, with the step as its cap). Where it holds — every ordinary
+// cloth and step — the result is the single step, bit for bit, at the cost of one more force
+// evaluation.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/integrators/implicit_system.h"
+#include "core/integrators/integrators.h"
+
+namespace neurocloth {
+namespace {
+
+class ImplicitEuler final : public Integrator {
+ public:
+  ImplicitEuler(const ClothNetwork& net, double min_step_fraction, double linear_tolerance)
+      : min_step_fraction_(min_step_fraction),
+        linear_tolerance_(linear_tolerance),
+        system_(net),
+        rhs_(3 * net.node_count()),
+        dv_(3 * net.node_count()),
+        v0_(3 * net.node_count()),
+        kv_(3 * net.node_count()),
+        piece_a_(net.node_count()),
+        piece_b_(net.node_count()),
+        force_a_(net.node_count()),
+        force_b_(net.node_count()) {}
+  IntegratorKind kind() const override { return IntegratorKind::implicit_euler; }
+  std::unique_ptr<Integrator> clone() const override {
+    return std::make_unique<ImplicitEuler>(*this);
+  }
+  int order() const override { return 1; }
+  double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
+
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                  const NodeVectors& F, double h, ClothState& out) override {
+    StepReport report{0, 0, true};
+    linear_step(net, in, F, h, out, report);
+    net.net_forces(out, inputs, force_a_);
+    ++report.force_evaluations;
+    if (!linearisation_holds(net, in, F, out, force_a_, h))
+      split(net, inputs, in, F, h, out, report);
+    return report;
+  }
+
+ private:
+  // The forces where a step landed may differ from their linear prediction
+  // at most this many times the largest force in play. Ordinary scenes stay
+  // below 30 (wind and contact are not in the linearisation); the stiff,
+  // light corner of the stability matrix starts at 5e9, and a threshold
+  // anywhere from 10 to 1e7 keeps it stable (docs/stability.md).
+  static constexpr double kLinearisationTolerance = 1000;
+
+  void linear_step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
+                   ClothState& out, StepReport& report) {
+    const std::size_t n = net.node_count();
+    system_.linearise(net, in);
+    for (std::size_t i = 0; i < n; ++i) {
+      v0_[3 * i] = in.vx[i];
+      v0_[3 * i + 1] = in.vy[i];
+      v0_[3 * i + 2] = in.vz[i];
+    }
+    system_.apply(net, 0.0, 0.0, 1.0, v0_, kv_);  // K v0
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = 1.0 / net.masses.inverse_mass[i];
+      const double free = net.masses.free[i];
+      const Vec3 f = F.at(i) + m * net.gravity;
+      for (int c = 0; c < 3; ++c)
+        rhs_[3 * i + c] = free * h * (f[c] - h * kv_[3 * i + c]);
+    }
+    std::fill(dv_.begin(), dv_.end(), 0.0);
+    const bool fresh = refresh_multigrid(net, h);
+    const CgResult cg = system_.solve(net, 1.0, h, h * h, rhs_, dv_, linear_tolerance_,
+                                      cg_max_iterations(n), &multigrid_);
+    account(fresh, cg.iterations);
+    for (std::size_t i = 0; i < n; ++i) {
+      out.vx[i] = in.vx[i] + dv_[3 * i];
+      out.vy[i] = in.vy[i] + dv_[3 * i + 1];
+      out.vz[i] = in.vz[i] + dv_[3 * i + 2];
+      out.x[i] = in.x[i] + h * out.vx[i];
+      out.y[i] = in.y[i] + h * out.vy[i];
+      out.z[i] = in.z[i] + h * out.vz[i];
+    }
+    report.force_evaluations += 1;
+    report.cg_iterations += cg.iterations;
+    report.cg_converged = report.cg_converged && cg.converged;
+  }
+
+  // The linear solve predicted the force m dv / h - m g on every free node;
+  // `end_force` is the force where the step landed. They must agree within the
+  // tolerance times the largest force in play (at the start, predicted, or a
+  // node's weight). A NaN anywhere fails.
+  static bool linearisation_holds(const ClothNetwork& net, const ClothState& in,
+                                  const NodeVectors& start_force, const ClothState& out,
+                                  const NodeVectors& end_force, double h) {
+    double error = 0, scale = 0;
+    for (std::size_t i = 0; i < net.node_count(); ++i) {
+      if (net.masses.free[i] == 0.0) continue;
+      const double m = 1.0 / net.masses.inverse_mass[i];
+      const Vec3 predicted = m * (out.velocity(i) - in.velocity(i)) / h - m * net.gravity;
+      error = std::max(error, (end_force.at(i) - predicted).norm());
+      scale = std::max({scale, start_force.at(i).norm(), predicted.norm(), m * net.gravity.norm()});
+    }
+    return error <= kLinearisationTolerance * scale;
+  }
+
+  // From `in` to h in pieces over which the linearisation holds, each a
+  // linearised step from where the last one landed; the end force of each
+  // piece is the start force of the next.
+  void split(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+             const NodeVectors& F, double h, ClothState& out, StepReport& report) {
+    ClothState* at = &piece_a_;
+    ClothState* trial = &piece_b_;
+    NodeVectors* at_force = &force_a_;
+    NodeVectors* trial_force = &force_b_;
+    *at = in;
+    *at_force = F;
+    StepController pieces(h, min_step_fraction_);
+    pieces.reject();  // the whole step did not hold
+    double t = 0;
+    while (t < h) {
+      const double p = pieces.trial(h - t);
+      linear_step(net, *at, *at_force, p, *trial, report);
+      net.net_forces(*trial, inputs, *trial_force);
+      ++report.force_evaluations;
+      if (!pieces.at_floor() &&
+          !linearisation_holds(net, *at, *at_force, *trial, *trial_force, p)) {
+        pieces.reject();
+        continue;
+      }
+      std::swap(at, trial);
+      std::swap(at_force, trial_force);
+      t = h - t - p <= 1e-12 * h ? h : t + p;
+      pieces.accept();
+    }
+    out = *at;
+  }
+
+  // The CG preconditioner: a multigrid hierarchy of the step's matrix at an
+  // earlier state (ImplicitMultigrid). It is built when there is none, when a
+  // weight, mass or pin has changed, when a step length other than its own is
+  // asked for twice in a row (a one-off, such as the end of a frame, is
+  // preconditioned with the hierarchy there is), and when it has gone stale.
+  // Returns true when it built one.
+  bool refresh_multigrid(const ClothNetwork& net, double h) {
+    const bool repeated = h == last_h_;
+    last_h_ = h;
+    if (net.node_count() > ImplicitMultigrid::kMaxNodes) return false;  // Jacobi, bounded memory
+    if (net.node_count() < ImplicitMultigrid::kMinNodes) return false;  // Jacobi, cheaper there
+    if (!stale_ && multigrid_.made_for(net, 1.0, h, h * h)) return false;
+    if (!stale_ && multigrid_.made_for(net) && !repeated) return false;
+    stale_ = false;
+    extra_cost_ = 0;
+    fresh_iterations_ = -1;
+    // A hierarchy that cannot be built leaves none: Jacobi for this step.
+    multigrid_.build(net, system_, 1.0, h, h * h);
+    return true;
+  }
+
+  // Stale: the solves' iterations beyond those of a fresh hierarchy have cost,
+  // in multiply-adds, more than a new one would (a rent-or-buy rule: at most
+  // twice the cheapest work in hindsight). Counted, not timed, so that a run is
+  // the same bits on every machine.
+  void account(bool fresh, int iterations) {
+    if (!multigrid_.built()) return;
+    if (fresh || fresh_iterations_ < 0) fresh_iterations_ = iterations;
+    extra_cost_ += std::max(0, iterations - fresh_iterations_) * multigrid_.cycle_cost();
+    stale_ = extra_cost_ > multigrid_.build_cost();
+  }
+
+  static int cg_max_iterations(std::size_t nodes) {
+    return static_cast<int>(std::max<std::size_t>(100, 3 * nodes));
+  }
+  double min_step_fraction_;
+  double linear_tolerance_;
+  ImplicitSystem system_;
+  ImplicitMultigrid multigrid_;
+  double last_h_ = 0;
+  bool stale_ = false;
+  int fresh_iterations_ = -1;  // CG iterations of the first solve with this hierarchy
+  double extra_cost_ = 0;      // multiply-adds of the iterations beyond those since
+  std::vector<double> rhs_, dv_, v0_, kv_;
+  // Scratch of a split step: where the pieces start and land, with their forces.
+  ClothState piece_a_, piece_b_;
+  NodeVectors force_a_, force_b_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction,
+                                                double linear_tolerance) {
+  return std::make_unique<ImplicitEuler>(net, min_step_fraction, linear_tolerance);
+}
+
+}  // namespace neurocloth

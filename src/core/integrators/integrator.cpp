@@ -1,0 +1,58 @@
+#include "core/integrators/integrator.h"
+
+#include "core/integrators/integrators.h"
+
+namespace neurocloth {
+
+const char* to_string(IntegratorKind k) {
+  switch (k) {
+    case IntegratorKind::network:
+      return "network";
+    case IntegratorKind::explicit_euler:
+      return "explicit_euler";
+    case IntegratorKind::verlet:
+      return "verlet";
+    case IntegratorKind::rk4:
+      return "rk4";
+    case IntegratorKind::implicit_euler:
+      return "implicit_euler";
+    case IntegratorKind::projective:
+      return "projective";
+  }
+  return "?";
+}
+
+std::optional<IntegratorKind> parse_integrator(const std::string& name) {
+  for (IntegratorKind k : kAllIntegrators)
+    if (name == to_string(k)) return k;
+  return std::nullopt;
+}
+
+std::string integrator_names() {
+  std::string s;
+  for (IntegratorKind k : kAllIntegrators)
+    s += (s.empty() ? "" : ", ") + std::string(to_string(k));
+  return s;
+}
+
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
+                                            double min_step_fraction, int iterations,
+                                            double linear_tolerance) {
+  switch (kind) {
+    case IntegratorKind::network:
+      return make_network_propagation(net);
+    case IntegratorKind::explicit_euler:
+      return make_explicit_euler(net);
+    case IntegratorKind::verlet:
+      return make_velocity_verlet(net);
+    case IntegratorKind::rk4:
+      return make_runge_kutta4(net);
+    case IntegratorKind::implicit_euler:
+      return make_implicit_euler(net, min_step_fraction, linear_tolerance);
+    case IntegratorKind::projective:
+      return make_projective(net, iterations);
+  }
+  return nullptr;
+}
+
+}  // namespace neurocloth

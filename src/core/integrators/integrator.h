@@ -1,0 +1,72 @@
+#pragma once
+// Every integrator steps the same network: it reads the neurons' outputs
+// (ClothState), asks the network for forces, and writes the next state. None of
+// them owns the network or allocates during a step.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/integrators/step_controller.h"
+#include "core/network/cloth_network.h"
+
+namespace neurocloth {
+
+enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler, projective };
+inline constexpr IntegratorKind kAllIntegrators[] = {
+    IntegratorKind::network, IntegratorKind::explicit_euler, IntegratorKind::verlet,
+    IntegratorKind::rk4,     IntegratorKind::implicit_euler, IntegratorKind::projective};
+
+// Local-global iterations per step of `projective` (its accuracy knob) unless a scene says.
+inline constexpr int kDefaultProjectiveIterations = 10;
+// The implicit step's conjugate gradient stops at |r| <= this * |b|. Tight
+// enough that the linear solve adds nothing visible to the step's own error
+// (docs/network.md, "Large steps").
+inline constexpr double kDefaultLinearTolerance = 1e-10;
+
+const char* to_string(IntegratorKind k);
+std::optional<IntegratorKind> parse_integrator(const std::string& name);
+// "network, explicit_euler, ..." for error messages.
+std::string integrator_names();
+
+struct StepReport {
+  int force_evaluations = 0;  // including the start-of-step evaluation
+  int cg_iterations = 0;      // or projective's local-global iterations
+  bool cg_converged = true;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual IntegratorKind kind() const = 0;
+  // An independent copy (scratch included), for copying a simulation.
+  virtual std::unique_ptr<Integrator> clone() const = 0;
+  // Global order of accuracy.
+  virtual int order() const = 0;
+  // Largest h * omega for which an undamped linear oscillator stays bounded
+  // (infinity when unconditionally stable). The adaptive step scales its bound by it.
+  virtual double stability_limit() const = 0;
+  // Advances `in` by h into `out` (which must not alias `in` unless steps_in_place()).
+  // `start_force` is net_forces(in, inputs) (stale when reads_start_force() is
+  // false): the caller has it for the adaptive rule, the step its FSAL cache. Every force
+  // evaluation of the step reads the same `inputs`.
+  virtual StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                          const NodeVectors& start_force, double h, ClothState& out) = 0;
+  // True when `out` may be the same object as `in`: a fixed step then touches
+  // one state buffer instead of two (half the memory traffic on large cloths).
+  virtual bool steps_in_place() const { return false; }
+  // False when step() never reads `start_force` (its forces come from its own
+  // sweeps): a fixed step then passes stale forces instead of paying a sweep
+  // over every spring for them.
+  virtual bool reads_start_force() const { return true; }
+};
+
+// Scratch is sized for `net`; the integrator may then step any network of that size.
+// `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
+// `iterations` the projective step's local-global iterations; `linear_tolerance`
+// the implicit step's conjugate gradient tolerance (relative residual).
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
+                                            double min_step_fraction = kDefaultMinStepFraction,
+                                            int iterations = kDefaultProjectiveIterations,
+                                            double linear_tolerance = kDefaultLinearTolerance);
+
+}  // namespace neurocloth

@@ -1,0 +1,15 @@
+#pragma once
+// Factories of the concrete integrators; each lives in its own file.
+#include <memory>
+
+#include "core/integrators/integrator.h"
+
+namespace neurocloth {
+std::unique_ptr<Integrator> make_network_propagation(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_explicit_euler(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_velocity_verlet(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_runge_kutta4(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction,
+                                                double linear_tolerance);
+std::unique_ptr<Integrator> make_projective(const ClothNetwork& net, int iterations);
+}  // namespace neurocloth

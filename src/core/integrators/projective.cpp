@@ -1,0 +1,327 @@
+// Fast mass-spring / projective dynamics (Liu et al. 2013), with Chebyshev
+// acceleration (Wang 2015): backward Euler written as a minimisation over the
+// end positions x,
+//   1/(2h^2) |x - y|_M^2 + sum_s k_s/2 |x_ab - r_s n_s|^2 + ...,
+// y = x0 + h v0 + h^2 M^-1 f_other the inertial target, x_ab = x_b - x_a and n_s its
+// direction. Alternating a local step (each spring's nearest term at fixed x)
+// and a global step (a linear solve with the constant matrix
+// M + sum_s (h^2 k_s + h d_s) L_s, prefactored) descends that energy; its fixed
+// point is backward Euler on the network's springs, exactly. The iterations per
+// step are the accuracy knob: few give a stable, too-soft cloth, many the
+// implicit Euler solution.
+//
+// Every term of the spring layer is such a projection, on the same weights:
+//   stiffness  k/2 |x_ab - r n|^2                  (the linear spring: e = l - r)
+//   stiffening k (f-1)/2 |x_ab - q|^2, q = x_ab clipped to length (1 + threshold) r
+//              (beyond the threshold the spring is f times stiffer; nothing below)
+//   damping    d/(2h) |u_ab - t|^2,   u_ab = x_ab - x0_ab, t = u_ab without its part
+//              along n; at the fixed point its gradient is d (n . v_ab) n, the
+//              network's velocity-force neuron at the end of the step.
+// Forces that are not springs (gravity, the external force, the scene's air and
+// wind) enter y, evaluated at the start of the step; colliders and the strain
+// limit act after it, as for every integrator. The unknowns are the
+// displacements x - x0 (so the new velocity, displacement / h, carries no
+// cancellation of positions).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/integrators/integrators.h"
+#include "core/integrators/spring_laplacian.h"
+#include "core/network/reciprocal_sqrt.h"
+#include "core/network/spring_chunks.h"
+
+namespace neurocloth {
+namespace {
+
+class Projective final : public Integrator {
+ public:
+  Projective(const ClothNetwork& net, int iterations)
+      : iterations_((refuse_beyond_limit(net), std::max(1, iterations))),
+        n_(net.node_count()),
+        y_(3 * n_),
+        x_(3 * n_),
+        prev_(3 * n_),
+        rhs_(3 * n_),
+        base_(3 * n_),
+        other_force_(n_) {}
+  IntegratorKind kind() const override { return IntegratorKind::projective; }
+  std::unique_ptr<Integrator> clone() const override { return std::make_unique<Projective>(*this); }
+  int order() const override { return 1; }
+  double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
+  bool reads_start_force() const override { return false; }  // other_forces() instead
+
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                  const NodeVectors&, double h, ClothState& out) override {
+    refactor_if_needed(net, h);
+    inertial_target(net, inputs, in, h);
+    step_base(net);
+    x_ = y_;
+    // Without a factor (a matrix that is not positive definite: no weight can
+    // make one in range) the step is the inertial one, and says it did not converge.
+    const int iterations = factored_ ? iterations_ : 0;
+    // Chebyshev needs the rate at which plain iterations converge. It depends
+    // on the cloth and the step, not on the state much, so it is measured once,
+    // on a step of plain iterations, and kept; an update that grows (the
+    // estimate was too bold) restarts from a plain iteration and lowers it.
+    const bool measure = rho_ == 0 && iterations > 0;
+    double omega = 1, last_update = 0, first_half = 0;
+    for (int it = 0; it < iterations; ++it) {
+      local_global(net, in, h);  // rhs_ now holds the global step's answer
+      double update = 0;
+      for (std::size_t i = 0; i < rhs_.size(); ++i)
+        update += (rhs_[i] - x_[i]) * (rhs_[i] - x_[i]);
+      update = std::sqrt(update);
+      if (measure) {
+        omega = 1;
+        if (it == iterations_ / 2) first_half = update;
+      } else if (it == 0) {
+        omega = 1;
+      } else if (update > last_update) {
+        omega = 1;
+        rho_ *= kRhoBackoff;
+      } else {
+        omega = omega == 1 ? 2 / (2 - rho_ * rho_) : 4 / (4 - rho_ * rho_ * omega);
+      }
+      last_update = update;
+      for (std::size_t i = 0; i < x_.size(); ++i) {
+        const double next = omega * (rhs_[i] - prev_[i]) + prev_[i];
+        prev_[i] = x_[i];
+        x_[i] = omega == 1 ? rhs_[i] : next;
+      }
+    }
+    const int span = iterations_ - 1 - iterations_ / 2;
+    if (measure && span >= 2 && first_half > 0 && last_update > 0 && last_update < first_half)
+      rho_ = std::min(kMaxRho, std::pow(last_update / first_half, 1.0 / span));
+    for (std::size_t i = 0; i < n_; ++i) {
+      const bool pinned = net.masses.free[i] == 0.0;  // moves on at its own velocity
+      out.vx[i] = pinned ? in.vx[i] : x_[i] / h;
+      out.vy[i] = pinned ? in.vy[i] : x_[n_ + i] / h;
+      out.vz[i] = pinned ? in.vz[i] : x_[2 * n_ + i] / h;
+      out.x[i] = in.x[i] + h * out.vx[i];
+      out.y[i] = in.y[i] + h * out.vy[i];
+      out.z[i] = in.z[i] + h * out.vz[i];
+    }
+    StepReport report{1, 0, true};
+    report.cg_iterations = iterations;  // local-global iterations, for the same tallies
+    report.cg_converged = factored_ && near_converged_;
+    return report;
+  }
+
+ private:
+  static constexpr double kMaxRho = 0.999;
+  static constexpr double kNearTolerance = 1e-13;
+  static constexpr int kNearIterations = 200;
+  // The factor's fill grows faster than the nodes (1.15 M entries at 128 x 128,
+  // about 25 M at 512 x 512, a few seconds to make): beyond this a cloth is
+  // refused rather than left to exhaust memory.
+  static constexpr std::size_t kMaxNodes = 512 * 512;
+  static void refuse_beyond_limit(const ClothNetwork& net) {
+    if (net.node_count() > kMaxNodes)
+      throw std::invalid_argument("projective: a cloth of " + std::to_string(net.node_count()) +
+                                  " nodes is beyond its prefactored solve's limit of " +
+                                  std::to_string(kMaxNodes) +
+                                  " (512 x 512); choose another integrator");
+  }
+  static constexpr double kRhoBackoff = 0.99;
+
+  // The global matrix's weights in the h^2-scaled form: M, and h^2 (k + k') + h d per
+  // spring. A factor costs what hundreds of solves cost (340 ms at 128 x 128), so it
+  // is made for the matrix a run keeps: one asked for twice in a row. A one-off
+  // step (the end of a frame, a trial of the adaptive step, a slider being
+  // dragged) solves its own matrix by conjugate gradient with the factor it has
+  // as preconditioner, exactly, in a few iterations.
+  void refactor_if_needed(const ClothNetwork& net, double h) {
+    const SpringLayer& L = net.springs;
+    node_weight_.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i)
+      node_weight_[i] = 1.0 / net.masses.inverse_mass[i];
+    spring_weight_.resize(L.size());
+    for (std::size_t s = 0; s < L.size(); ++s)
+      spring_weight_[s] = h * h * (L.stiffness[s] + extra_stiffness(net, s)) + h * L.damping[s];
+    near_ = false;
+    near_converged_ = true;
+    if (laplacian_.same_as(node_weight_, spring_weight_, net.masses.free)) return;
+    const bool asked_before = spring_weight_ == last_asked_;
+    last_asked_ = spring_weight_;
+    if (factored_ && !asked_before && laplacian_.same_nodes(node_weight_, net.masses.free)) {
+      near_ = true;
+      return;
+    }
+    rho_ = 0;  // another matrix converges at another rate
+    factored_ = laplacian_.factor(L, node_weight_, spring_weight_, net.masses.free);
+  }
+
+  static double extra_stiffness(const ClothNetwork& net, std::size_t s) {
+    const SpringFunction& f = net.springs.function;
+    return f.kind == SpringFunctionKind::stiffening
+               ? net.springs.stiffness[s] * (f.stiffening_factor - 1.0)
+               : 0.0;
+  }
+
+  // The inertial displacement y - x0 = h v0 + h^2 M^-1 (f_other + m g) on free
+  // nodes; a pinned node moves h v0.
+  void inertial_target(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+                       double h) {
+    net.other_forces(in, inputs, other_force_);
+    const double* const v[3] = {in.vx.data(), in.vy.data(), in.vz.data()};
+    const double* const f[3] = {other_force_.x.data(), other_force_.y.data(),
+                                other_force_.z.data()};
+    const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};
+    for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n_; ++i) {
+        const double free = net.masses.free[i], w = net.masses.inverse_mass[i];
+        y_[c * n_ + i] = h * v[c][i] + free * h * h * (w * f[c][i] + g[c]);
+      }
+    prev_ = y_;
+  }
+
+  // One local step at x_ and one global solve: rhs_ <- P^-1 (M y + sum_s A_s^T c_s),
+  // all in displacements. The springs are visited chunk by chunk as the
+  // network's force sweep visits them (spring_chunks.h), so each chunk's
+  // targets are computed in one vectorisable loop and added in another.
+  void local_global(const ClothNetwork& net, const ClothState& in, double h) {
+    const SpringLayer& L = net.springs;
+    rhs_ = base_;
+    double* const dst = rhs_.data();
+    const std::array<double*, 3> rows = {dst, dst + n_, dst + 2 * n_};
+    spring_chunks::Chunk& c = chunk_;
+    const bool stiffening = L.function.kind == SpringFunctionKind::stiffening;
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          if (stiffening)
+            spring_targets<SpringFunctionKind::stiffening>(L, first, count, a, b, in, h, c);
+          else
+            spring_targets<SpringFunctionKind::linear>(L, first, count, a, b, in, h, c);
+          spring_chunks::accumulate_chunk(count, a, b, c.fx, c.fy, c.fz, rows);
+        });
+    // A pinned row is x = y whatever its springs asked.
+    for (const std::int32_t p : pinned_)
+      for (std::size_t k = 0; k < 3; ++k)
+        rhs_[k * n_ + std::size_t(p)] = y_[k * n_ + std::size_t(p)];
+    if (!factored_) return;
+    if (near_)
+      near_converged_ = laplacian_.solve3_near(L, spring_weight_, rhs_.data(), kNearTolerance,
+                                               kNearIterations) >= 0 &&
+                        near_converged_;
+    else
+      laplacian_.solve3(rhs_.data());
+  }
+
+  // The springs' terms of a chunk at x_: -c_s, the target every term of spring
+  // s asks for u (x_ab less x0_ab), negated so that accumulate_chunk's +1 at a
+  // and -1 at b give A_s^T c_s.
+  template <SpringFunctionKind K>
+  void spring_targets(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
+                      std::int32_t b, const ClothState& in, double h,
+                      spring_chunks::Chunk& out) const {
+    const double* const ux_a = x_.data() + a;
+    const double* const uy_a = x_.data() + n_ + a;
+    const double* const uz_a = x_.data() + 2 * n_ + a;
+    const double* const ux_b = x_.data() + b;
+    const double* const uy_b = x_.data() + n_ + b;
+    const double* const uz_b = x_.data() + 2 * n_ + b;
+    const double* const px_a = in.x.data() + a;
+    const double* const py_a = in.y.data() + a;
+    const double* const pz_a = in.z.data() + a;
+    const double* const px_b = in.x.data() + b;
+    const double* const py_b = in.y.data() + b;
+    const double* const pz_b = in.z.data() + b;
+    const double* const rest = L.rest_length.data() + first;
+    const double* const stiffness = L.stiffness.data() + first;
+    const double* const damping = L.damping.data() + first;
+    const double h2 = h * h, threshold = 1.0 + L.function.strain_threshold;
+    const double extra = L.function.stiffening_factor - 1.0;
+    double* const cx = out.fx;
+    double* const cy = out.fy;
+    double* const cz = out.fz;
+#pragma GCC ivdep
+    for (std::int32_t j = 0; j < count; ++j) {
+      const double ux = ux_b[j] - ux_a[j], uy = uy_b[j] - uy_a[j], uz = uz_b[j] - uz_a[j];
+      const double d0x = px_b[j] - px_a[j], d0y = py_b[j] - py_a[j], d0z = pz_b[j] - pz_a[j];
+      const double dx = d0x + ux, dy = d0y + uy, dz = d0z + uz;
+      const double len2 = dx * dx + dy * dy + dz * dz;
+      const bool has_direction = len2 > kMinSpringLength * kMinSpringLength;
+      // Without the divider: a square root and three divisions were a third of the step.
+      const double inv_len = reciprocal_sqrt(has_direction ? len2 : 1.0);
+      const double nx = inv_len * dx, ny = inv_len * dy, nz = inv_len * dz;
+      const double k = h2 * stiffness[j], d = h * damping[j], r = rest[j];
+      const double along = ux * nx + uy * ny + uz * nz;
+      // stiffness: rest-length along n; damping: u without its part along n.
+      double tx = k * (r * nx - d0x) + d * (ux - along * nx);
+      double ty = k * (r * ny - d0y) + d * (uy - along * ny);
+      double tz = k * (r * nz - d0z) + d * (uz - along * nz);
+      double k_all = k + d;
+      if constexpr (K == SpringFunctionKind::stiffening) {
+        // stiffening: x_ab clipped to (1 + threshold) rest.
+        const double k2 = k * extra, limit = threshold * r;
+        const bool clip = len2 * inv_len > limit;
+        tx += k2 * ((clip ? limit * nx : dx) - d0x);
+        ty += k2 * ((clip ? limit * ny : dy) - d0y);
+        tz += k2 * ((clip ? limit * nz : dz) - d0z);
+        k_all += k2;
+      }
+      // No direction: no force, as in the network.
+      cx[j] = -(has_direction ? tx : k_all * ux);
+      cy[j] = -(has_direction ? ty : k_all * uy);
+      cz[j] = -(has_direction ? tz : k_all * uz);
+    }
+  }
+
+  // What every iteration of a step starts its right-hand side from: M y on
+  // free rows, y on pinned ones, and on a free node the pull w y_p of each
+  // spring to a pinned node p (A_s^T moves the known end to its side).
+  void step_base(const ClothNetwork& net) {
+    const std::vector<double>& free = net.masses.free;
+    if (free != pins_of_) {
+      pins_of_ = free;
+      pinned_.clear();
+      pin_springs_.clear();
+      for (std::size_t i = 0; i < n_; ++i)
+        if (free[i] == 0.0) pinned_.push_back(std::int32_t(i));
+      const SpringLayer& L = net.springs;
+      for (std::size_t s = 0; s < L.size(); ++s)
+        if ((free[std::size_t(L.node_a[s])] == 0.0) != (free[std::size_t(L.node_b[s])] == 0.0))
+          pin_springs_.push_back(std::int32_t(s));
+    }
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double m = free[i] != 0.0 ? node_weight_[i] : 1.0;
+      for (std::size_t k = 0; k < 3; ++k)
+        base_[k * n_ + i] = m * y_[k * n_ + i];
+    }
+    for (const std::int32_t s : pin_springs_) {
+      std::size_t a = std::size_t(net.springs.node_a[std::size_t(s)]);
+      std::size_t b = std::size_t(net.springs.node_b[std::size_t(s)]);
+      if (free[a] == 0.0) std::swap(a, b);  // a: the free end
+      for (std::size_t k = 0; k < 3; ++k)
+        base_[k * n_ + a] += spring_weight_[std::size_t(s)] * y_[k * n_ + b];
+    }
+  }
+
+  int iterations_;
+  std::size_t n_;
+  // Displacements and right-hand sides, planar (every node's x, then y, then z).
+  std::vector<double> y_, x_, prev_, rhs_, base_;
+  spring_chunks::Chunk chunk_;
+  std::vector<double> pins_of_;  // the pins pinned_ and pin_springs_ were found for
+  std::vector<std::int32_t> pinned_, pin_springs_;
+  NodeVectors other_force_;
+  std::vector<double> node_weight_, spring_weight_;
+  SpringLaplacian laplacian_;
+  bool factored_ = false;
+  double rho_ = 0;                  // plain iterations' convergence rate; 0 until measured
+  bool near_ = false;               // this step's matrix is not the factored one
+  bool near_converged_ = true;      // and its solves converged
+  std::vector<double> last_asked_;  // the spring weights the last step asked for
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_projective(const ClothNetwork& net, int iterations) {
+  return std::make_unique<Projective>(net, iterations);
+}
+
+}  // namespace neurocloth

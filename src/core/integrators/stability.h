@@ -1,0 +1,40 @@
+#pragma once
+// How large a step the explicit integrators can take. For every free node a
+// Gershgorin bound on M^-1 K and M^-1 D gives
+//   omega_i^2 = 2 w_i sum_s k_s max_slope,   gamma_i = 2 w_i sum_s d_s
+// over the springs s at node i. Semi-implicit Euler on x'' = -omega^2 x - gamma x'
+// is stable when h^2 omega^2 + 2 h gamma < 4; with a general limit L on h*omega:
+//   h_i = L^2 / (gamma_i + sqrt(gamma_i^2 + L^2 omega_i^2))
+// The bound is the minimum over nodes (infinity when nothing constrains it).
+// docs/stability.md compares it with the critical steps measured on grids.
+#include <vector>
+
+#include "core/integrators/integrator.h"
+#include "core/network/cloth_network.h"
+
+namespace neurocloth {
+
+double stable_step_bound(const ClothNetwork& net, double stability_limit);
+// The same with caller-owned scratch (resized to the node count), so a live
+// simulation that recomputes the bound after every weight change allocates nothing.
+double stable_step_bound(const ClothNetwork& net, double stability_limit,
+                         std::vector<double>& k_sum, std::vector<double>& d_sum);
+
+// Forward Euler is the exception: on an undamped oscillator it gains energy at
+// every step (|1 + i h omega| > 1), so no L makes it stable. With viscosity it
+// is stable while h < gamma / omega^2 for every mode, which for damping along
+// the springs is h < d_s / (k_s max_slope) (exact when every spring has the
+// same ratio), and h < 2 / gamma_i for the overdamped ones. This returns that
+// step: 0 when some stiff spring has no damping. Measured in docs/stability.md.
+double explicit_euler_step_bound(const ClothNetwork& net);
+double explicit_euler_step_bound(const ClothNetwork& net, std::vector<double>& d_sum);
+
+// The step the adaptive cap and the run-time guard scale by `safety`: the
+// Gershgorin bound at the integrator's limit, and for forward Euler also its
+// damped bound above. Where forward Euler has none (a spring without damping:
+// no step is stable for ever) the Gershgorin bound is kept, so the step stays
+// finite, and LiveScene::stability_notice() says a divergence is coming.
+double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
+                             std::vector<double>& k_sum, std::vector<double>& d_sum);
+
+}  // namespace neurocloth

@@ -1,0 +1,252 @@
+#pragma once
+// The force neurons of one chunk (cloth_network.cpp's propagate_chunk) written
+// for AVX-512 by hand, for one reason: 1/len. The portable loop seeds it from
+// the exponent bits and needs four Newton steps (reciprocal_sqrt.h): 13 of the
+// loop's 27 multiplies, and the multiply ports are what bounds it. The
+// hardware estimate vrsqrt14pd is within 2^-14, so two Newton steps reach
+// round-off: the 128 x 128 step is about a fifth cheaper.
+//
+// Deterministic for a build and a CPU: vrsqrt14pd is a table lookup, and the
+// tail is the same instructions under a mask, so every spring sees the same
+// operations whatever its place in a chunk or a thread's part. The bits
+// differ from the portable loop's in the last place (tested against it in
+// spring_chunk_test.cpp). Internal to the core.
+//
+// FloatForces8 is the same in float (SpringPrecision::float32). Both need
+// AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512
+// masks): every AVX-512 CPU since Skylake-X has both.
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#define NEUROCLOTH_HAND_VECTORISED 1
+#include <immintrin.h>
+
+#include <cstdint>
+#include <type_traits>
+
+#include "core/network/cloth_state.h"
+#include "core/network/spring_layer.h"
+
+namespace neurocloth {
+namespace spring_chunks {
+
+constexpr bool kHandVectorised = true;
+
+inline __mmask8 first_lanes(std::int32_t n) {
+  return n >= 8 ? __mmask8(0xFF) : __mmask8((1u << n) - 1u);
+}
+
+// Where a chunk's inputs are: the ends' positions and velocities from node a
+// of its first spring (the b ends `offset` nodes on), its springs' weights.
+struct ChunkInputs {
+  const double* px;
+  const double* py;
+  const double* pz;
+  const double* vx;
+  const double* vy;
+  const double* vz;
+  const double* rest;
+  const double* b1;
+  const double* b2;
+  std::int32_t offset;
+
+  ChunkInputs(const SpringLayer& L, std::int32_t first, std::int32_t a, std::int32_t b,
+              const ClothState& s)
+      : px(s.x.data() + a),
+        py(s.y.data() + a),
+        pz(s.z.data() + a),
+        vx(s.vx.data() + a),
+        vy(s.vy.data() + a),
+        vz(s.vz.data() + a),
+        rest(L.rest_length.data() + first),
+        b1(L.stiffness.data() + first),
+        b2(L.damping.data() + first),
+        offset(b - a) {}
+};
+
+// The force neurons' outputs of springs k..k+7 of a chunk whose b ends are
+// `offset` nodes after its a ends (p* and v* point at node a of spring 0);
+// lanes outside `m` are zero.
+template <SpringFunctionKind K>
+struct Forces8 : ChunkInputs {
+  __m512d threshold, extra, min_len2;
+
+  Forces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
+          std::int32_t b, const ClothState& s, double min_length)
+      : ChunkInputs(L, first, a, b, s),
+        threshold(_mm512_set1_pd(L.function.strain_threshold)),
+        extra(_mm512_set1_pd(L.function.stiffening_factor - 1.0)),
+        min_len2(_mm512_set1_pd(min_length * min_length)) {}
+
+  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
+    const __m512d one = _mm512_set1_pd(1.0);
+    const __m512d three_halves = _mm512_set1_pd(1.5);
+    // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    const __m512d dx = _mm512_sub_pd(at(px + offset), at(px));
+    const __m512d dy = _mm512_sub_pd(at(py + offset), at(py));
+    const __m512d dz = _mm512_sub_pd(at(pz + offset), at(pz));
+    const __m512d len2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                       _mm512_mul_pd(dz, dz));
+    const __mmask8 has_direction = _mm512_cmp_pd_mask(len2, min_len2, _CMP_GT_OQ);
+    const __m512d safe_len2 = _mm512_mask_blend_pd(has_direction, one, len2);
+    // Newton on 1/y^2 - x from the 2^-14 estimate: 2^-14 -> 3e-9 -> round-off.
+    // (maskz forms here and below: GCC 12 warns about the unmasked forms'
+    // undefined pass-through.)
+    const __m512d half_x = _mm512_mul_pd(_mm512_set1_pd(0.5), safe_len2);
+    __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, safe_len2);
+    y = _mm512_mul_pd(y, _mm512_sub_pd(three_halves, _mm512_mul_pd(half_x, _mm512_mul_pd(y, y))));
+    const __m512d inv_len =
+        _mm512_mul_pd(y, _mm512_sub_pd(three_halves, _mm512_mul_pd(half_x, _mm512_mul_pd(y, y))));
+    const __m512d len = _mm512_mul_pd(safe_len2, inv_len);
+    const __m512d r = at(rest);
+    __m512d e = _mm512_sub_pd(len, r);
+    if constexpr (K == SpringFunctionKind::stiffening) {
+      const __m512d beyond = _mm512_maskz_max_pd(0xFF, _mm512_setzero_pd(),
+                                                 _mm512_sub_pd(e, _mm512_mul_pd(threshold, r)));
+      e = _mm512_add_pd(e, _mm512_mul_pd(extra, beyond));
+    }
+    const __m512d rel =
+        _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(at(vx + offset), at(vx)), dx),
+                                    _mm512_mul_pd(_mm512_sub_pd(at(vy + offset), at(vy)), dy)),
+                      _mm512_mul_pd(_mm512_sub_pd(at(vz + offset), at(vz)), dz));
+    const __m512d magnitude =
+        _mm512_add_pd(_mm512_mul_pd(at(b1), e), _mm512_mul_pd(at(b2), _mm512_mul_pd(rel, inv_len)));
+    const __m512d scale = _mm512_maskz_mul_pd(has_direction, magnitude, inv_len);
+    gx = _mm512_mul_pd(scale, dx);
+    gy = _mm512_mul_pd(scale, dy);
+    gz = _mm512_mul_pd(scale, dz);
+  }
+};
+
+// Forces8's arithmetic in float (SpringPrecision::float32): the differences
+// of the ends' positions and velocities are taken in double and rounded,
+// everything after is float, and the outputs are widened back to double for
+// the node sums. Eight springs a step in 256-bit registers rather than 16 in
+// 512-bit ones: the loads and the node sums are double either way, and 16
+// lanes cost a join of two halves per input and a split per output, which
+// measured slower than the double kernel (docs/network.md, "Float springs").
+// vrsqrt14ps is within 2^-14, so one Newton step reaches float's round-off.
+template <SpringFunctionKind K>
+struct FloatForces8 : ChunkInputs {
+  __m256 threshold, extra, min_len2;
+
+  FloatForces8(const SpringLayer& L, std::int32_t first, std::int32_t /*count*/, std::int32_t a,
+               std::int32_t b, const ClothState& s, double min_length)
+      : ChunkInputs(L, first, a, b, s),
+        threshold(_mm256_set1_ps(static_cast<float>(L.function.strain_threshold))),
+        extra(_mm256_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
+        min_len2(_mm256_set1_ps(static_cast<float>(min_length * min_length))) {}
+
+  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
+    // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    const auto narrow = [](__m512d v) { return _mm512_maskz_cvtpd_ps(0xFF, v); };
+    const auto diff = [&](const double* p) { return narrow(_mm512_sub_pd(at(p + offset), at(p))); };
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 dx = diff(px), dy = diff(py), dz = diff(pz);
+    const __m256 len2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                      _mm256_mul_ps(dz, dz));
+    const __mmask8 has_direction = _mm256_cmp_ps_mask(len2, min_len2, _CMP_GT_OQ);
+    const __m256 safe_len2 = _mm256_mask_blend_ps(has_direction, one, len2);
+    const __m256 y = _mm256_maskz_rsqrt14_ps(0xFF, safe_len2);
+    const __m256 inv_len = _mm256_mul_ps(
+        y, _mm256_sub_ps(
+               _mm256_set1_ps(1.5f),
+               _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), safe_len2), _mm256_mul_ps(y, y))));
+    const __m256 len = _mm256_mul_ps(safe_len2, inv_len);
+    const __m256 r = narrow(at(rest));
+    __m256 e = _mm256_sub_ps(len, r);
+    if constexpr (K == SpringFunctionKind::stiffening) {
+      const __m256 beyond = _mm256_maskz_max_ps(0xFF, _mm256_setzero_ps(),
+                                                _mm256_sub_ps(e, _mm256_mul_ps(threshold, r)));
+      e = _mm256_add_ps(e, _mm256_mul_ps(extra, beyond));
+    }
+    const __m256 rel =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(diff(vx), dx), _mm256_mul_ps(diff(vy), dy)),
+                      _mm256_mul_ps(diff(vz), dz));
+    const __m256 magnitude =
+        _mm256_add_ps(_mm256_mul_ps(narrow(at(b1)), e),
+                      _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
+    const __m256 scale = _mm256_maskz_mul_ps(has_direction, magnitude, inv_len);
+    gx = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
+    gy = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
+    gz = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dz));
+  }
+};
+
+// The force neurons of a chunk in `T`'s arithmetic.
+template <SpringFunctionKind K, typename T>
+using Forces = std::conditional_t<std::is_same_v<T, float>, FloatForces8<K>, Forces8<K>>;
+
+// propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
+// b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
+template <SpringFunctionKind K, bool Direct, typename T>
+void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
+                            std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
+                            double* fx, double* fy, double* fz) {
+  const Forces<K, T> forces(L, first, count, a, b, s, min_length);
+  const std::int32_t offset = b - a;
+  for (std::int32_t k = 0; k < count; k += 8) {
+    const __mmask8 m = first_lanes(count - k);
+    __m512d gx, gy, gz;
+    forces(k, m, gx, gy, gz);
+    if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
+      const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+      _mm512_mask_storeu_pd(fx + k, m, _mm512_add_pd(at(fx), gx));
+      _mm512_mask_storeu_pd(fy + k, m, _mm512_add_pd(at(fy), gy));
+      _mm512_mask_storeu_pd(fz + k, m, _mm512_add_pd(at(fz), gz));
+      _mm512_mask_storeu_pd(fx + offset + k, m, _mm512_sub_pd(at(fx + offset), gx));
+      _mm512_mask_storeu_pd(fy + offset + k, m, _mm512_sub_pd(at(fy + offset), gy));
+      _mm512_mask_storeu_pd(fz + offset + k, m, _mm512_sub_pd(at(fz + offset), gz));
+    } else {
+      _mm512_mask_storeu_pd(fx + k, m, gx);
+      _mm512_mask_storeu_pd(fy + k, m, gy);
+      _mm512_mask_storeu_pd(fz + k, m, gz);
+    }
+  }
+}
+
+// A chunk of neighbours in a row (b = a + O, O < count): node a + j receives
+// +g[j] - g[j - O]. The outputs never leave the registers: g[j - O] is the
+// vector before shifted by O lanes. Each node's sum is the expression
+// accumulate_chunk evaluates, so the bits are the same as that path's.
+template <SpringFunctionKind K, typename T, int O>
+void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
+                          std::int32_t a, const ClothState& s, double min_length, double* fx,
+                          double* fy, double* fz) {
+  static_assert(O > 0 && O < 8, "a shift within one vector");
+  const Forces<K, T> forces(L, first, count, a, a + O, s, min_length);
+  __m512d px = _mm512_setzero_pd(), py = px, pz = px;
+  const auto shifted = [](__m512d now, __m512d before) {
+    return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),
+                                                         _mm512_castpd_si512(before), 8 - O));
+  };
+  double* const dst[3] = {fx, fy, fz};
+  for (std::int32_t k = 0; k < count + O; k += 8) {
+    const __mmask8 springs = first_lanes(count - k > 0 ? count - k : 0);
+    const __mmask8 nodes = first_lanes(count + O - k);
+    __m512d g[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+    if (k < count) forces(k, springs, g[0], g[1], g[2]);
+    const __m512d before[3] = {shifted(g[0], px), shifted(g[1], py), shifted(g[2], pz)};
+    for (int c = 0; c < 3; ++c) {
+      const __m512d f = _mm512_maskz_loadu_pd(nodes, dst[c] + k);
+      // Nodes with a spring starting at them: f + (g[j] - g[j-O]) (g[j-O] is
+      // zero before the first); the last O nodes: f - g[j-O].
+      const __m512d inner = _mm512_add_pd(f, _mm512_sub_pd(g[c], before[c]));
+      const __m512d outer = _mm512_sub_pd(f, before[c]);
+      _mm512_mask_storeu_pd(dst[c] + k, nodes, _mm512_mask_blend_pd(springs, outer, inner));
+    }
+    px = g[0];
+    py = g[1];
+    pz = g[2];
+  }
+}
+
+}  // namespace spring_chunks
+}  // namespace neurocloth
+#else
+namespace neurocloth {
+namespace spring_chunks {
+constexpr bool kHandVectorised = false;
+}  // namespace spring_chunks
+}  // namespace neurocloth
+#endif

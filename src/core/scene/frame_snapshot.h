@@ -1,0 +1,56 @@
+#pragma once
+// What the renderer draws: a plain copy of the cloth at one moment. The
+// simulation thread fills one and publishes it; the render thread reads it
+// without any lock and never touches the live simulation. What never changes
+// during a run (triangles, springs, colliders) is shared between snapshots,
+// not copied each frame.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/base/vec3.h"
+#include "core/modules/module_specs.h"
+#include "core/network/cloth_topology.h"
+
+namespace neurocloth {
+
+class Scene;
+class Simulation;
+
+struct SceneGeometry {
+  std::string scene_name;
+  std::vector<std::array<std::int32_t, 3>> triangles;
+  std::vector<std::int32_t> spring_a, spring_b;
+  std::vector<SpringFamily> spring_family;
+  std::vector<float> rest_length;     // m, per spring (for the strain colour map)
+  std::vector<ModuleSpec> colliders;  // PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec only
+  std::size_t node_count = 0;
+  NodeNumbering numbering;  // the file's vertex of each node: what the user is shown
+};
+
+struct FrameSnapshot {
+  std::shared_ptr<const SceneGeometry> geometry;
+  std::vector<float> position;       // x, y, z per node, m
+  std::vector<std::uint8_t> pinned;  // 1 for a pinned node
+  // Forces the user applies (the drag), for drawing as lines.
+  struct AppliedForce {
+    std::int32_t node;
+    Vec3 force;   // N
+    Vec3 anchor;  // the point it pulls towards (the cursor on its drag plane)
+  };
+  std::vector<AppliedForce> forces;
+  double time = 0;  // simulated s
+  long serial = 0;  // increases with every published snapshot
+
+  Vec3 node(std::size_t i) const {
+    return {position[3 * i], position[3 * i + 1], position[3 * i + 2]};
+  }
+};
+
+std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene);
+// Copies the simulation's positions and pins into `out` (no allocation once sized).
+void capture(const Simulation& sim, FrameSnapshot& out);
+
+}  // namespace neurocloth

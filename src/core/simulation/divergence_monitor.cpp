@@ -1,0 +1,54 @@
+#include "core/simulation/divergence_monitor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace neurocloth {
+
+DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& s,
+                                     const DivergenceSettings& settings)
+    : settings_(settings) {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  double weight = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    lo = lo.cwiseMin(s.position(i));
+    hi = hi.cwiseMax(s.position(i));
+    if (net.masses.free[i] != 0.0)
+      weight += std::abs(1.0 / net.masses.inverse_mass[i]) * net.gravity.norm();
+  }
+  size_ = s.size() ? std::max((hi - lo).norm(), 1e-3) : 1.0;
+  const Energy e = net.energy(s);
+  double modules = 0;  // what wind and the like can put in
+  for (const auto& m : net.force_modules)
+    modules += m->energy_bound(net, size_);
+  base_budget_ = std::max({e.kinetic + std::abs(e.spring) + modules, weight * size_, 1e-12});
+  gravity_start_ = e.gravity;
+}
+
+std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& s,
+                                     const ForceInputs& inputs) {
+  if (!s.all_finite()) return "non-finite position or velocity (NaN or Inf)";
+  const Energy e = net.energy(s);
+  if (!std::isfinite(e.total())) return "non-finite energy";
+  double external = 0;
+  for (std::size_t i = 0; i < inputs.external_force.size(); ++i)
+    external += inputs.external_force.at(i).norm();
+  const double budget = base_budget_ + std::max(0.0, gravity_start_ - e.gravity) + external * size_;
+  const double held = e.kinetic + e.spring;
+  auto reason = [&](const char* what) {
+    std::ostringstream os;
+    os << what << ": kinetic + spring energy " << held << " J against a budget of " << budget
+       << " J";
+    return os.str();
+  };
+  if (held > settings_.hard_factor * budget) return reason("runaway energy");
+  if (held > settings_.runaway_factor * budget) {
+    if (++strikes_ >= settings_.runaway_checks) return reason("runaway energy");
+  } else {
+    strikes_ = 0;
+  }
+  return {};
+}
+
+}  // namespace neurocloth

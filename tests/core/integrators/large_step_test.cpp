@@ -1,0 +1,264 @@
+// The projective integrator against the equations it solves: its local-global
+// iterations against backward Euler itself (the root of its nonlinear
+// equations, found here by Newton's method), and its prefactored matrix.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/integrators/implicit_system.h"
+#include "core/integrators/integrator.h"
+#include "core/integrators/spring_laplacian.h"
+#include "core/simulation/simulation.h"
+#include "support/scene_builder.h"
+
+namespace neurocloth {
+namespace {
+
+// A cloth hanging from its top corners, moving: a few network steps from rest.
+struct Moving {
+  ClothNetwork net;
+  ClothState state;
+};
+
+Moving moving_cloth(int n, bool stiffening = false) {
+  test::SceneBuilder b(n, n, 0.3 / (n - 1));
+  b.hanging().pins(nlohmann::json::array({nlohmann::json{0, 0}, nlohmann::json{0, n - 1}}));
+  b.material(400.0, 0.02, 0.2);
+  if (stiffening)
+    b.set("/cloth/spring_function", {{"type", "stiffening"}, {"strain", 0.01}, {"factor", 20}});
+  const Scene scene = b.parse();
+  Moving m{scene.build_network(), scene.initial_state()};
+  for (std::size_t i = 0; i < m.state.size(); ++i)  // a sideways push
+    m.state.vz[i] = 0.5 * std::sin(0.7 * static_cast<double>(i));
+  const auto integrator = make_integrator(IntegratorKind::network, m.net);
+  NodeVectors f(m.net.node_count());
+  ClothState next = m.state;
+  for (int k = 0; k < 200; ++k) {
+    m.net.net_forces(m.state, f);
+    integrator->step(m.net, ForceInputs{}, m.state, f, 2e-4, next);
+    std::swap(m.state, next);
+  }
+  return m;
+}
+
+double max_difference(const ClothState& a, const ClothState& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, (a.position(i) - b.position(i)).norm());
+  return worst;
+}
+
+// Backward Euler's residual at end velocities v: M (v - v0) - h (F(x0 + h v, v) + M g)
+// on free nodes, relative to the largest force in play.
+double backward_euler_residual(const ClothNetwork& net, const ClothState& in, const ClothState& out,
+                               double h) {
+  NodeVectors f(net.node_count());
+  net.net_forces(out, f);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < net.node_count(); ++i) {
+    if (net.masses.free[i] == 0.0) continue;
+    const double m = net.mass(i);
+    const Vec3 force = f.at(i) + m * net.gravity;
+    worst = std::max(worst, (m * (out.velocity(i) - in.velocity(i)) / h - force).norm());
+    scale = std::max(scale, force.norm() + m * net.gravity.norm());
+  }
+  return worst / scale;
+}
+
+// Newton's method on backward Euler (the Jacobian M + h D + h^2 K with the
+// exact stiffness; the damping's dependence on direction is left out, so it
+// converges linearly where the cloth is damped): the root to rounding.
+ClothState backward_euler(const ClothNetwork& net, const ClothState& in, double h) {
+  const std::size_t n = net.node_count();
+  ImplicitSystem system(net);
+  ClothState at = in;
+  std::vector<double> r(3 * n), dv(3 * n);
+  NodeVectors f(n);
+  for (int it = 0; it < 100; ++it) {
+    for (std::size_t i = 0; i < n; ++i)
+      at.set_position(i, in.position(i) + h * at.velocity(i));
+    net.net_forces(at, f);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = net.mass(i), free = net.masses.free[i];
+      const Vec3 res = h * (f.at(i) + m * net.gravity) - m * (at.velocity(i) - in.velocity(i));
+      for (int c = 0; c < 3; ++c)
+        r[3 * i + c] = free * res[c];
+    }
+    system.linearise(net, at, true);
+    std::fill(dv.begin(), dv.end(), 0.0);
+    system.solve(net, 1.0, h, h * h, r, dv, 1e-14, 10000);
+    for (std::size_t i = 0; i < n; ++i)
+      at.set_velocity(i, at.velocity(i) + Vec3(dv[3 * i], dv[3 * i + 1], dv[3 * i + 2]));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    at.set_position(i, in.position(i) + h * at.velocity(i));
+  return at;
+}
+
+ClothState projective_step(const ClothNetwork& net, const ClothState& in, double h,
+                           int iterations) {
+  const auto integrator =
+      make_integrator(IntegratorKind::projective, net, kDefaultMinStepFraction, iterations);
+  NodeVectors f(net.node_count());
+  net.net_forces(in, f);
+  ClothState out = in;
+  // The first step measures how fast plain iterations converge; the second,
+  // from the same state, is Chebyshev-accelerated by that rate.
+  integrator->step(net, ForceInputs{}, in, f, h, out);
+  integrator->step(net, ForceInputs{}, in, f, h, out);
+  return out;
+}
+
+void converges_to_backward_euler(bool stiffening) {
+  const Moving m = moving_cloth(8, stiffening);
+  const double h = 1.0 / 60;
+  const ClothState reference = backward_euler(m.net, m.state, h);
+  ASSERT_LT(backward_euler_residual(m.net, m.state, reference, h), 1e-9);
+  // The step itself moves the cloth by centimetres: the errors below are small against it.
+  const double moved = max_difference(reference, m.state);
+  ASSERT_GT(moved, 1e-3);
+  std::vector<double> errors;
+  for (int iterations : {2, 8, 32, 128, 512}) {
+    errors.push_back(max_difference(projective_step(m.net, m.state, h, iterations), reference));
+    if (errors.size() > 1) {
+      EXPECT_LT(errors.back(), errors[errors.size() - 2]) << iterations;
+    }
+  }
+  if (stiffening)  // the matrix holds the stiff branch everywhere: slower, still converging
+    EXPECT_LT(errors.back(), 0.1 * errors.front());
+  else
+    EXPECT_LT(errors.back(), 1e-7 * moved) << "512 iterations";
+}
+
+TEST(Projective, ConvergesToBackwardEulerAsItsIterationsGrow) {
+  converges_to_backward_euler(false);
+}
+
+TEST(Projective, ConvergesToBackwardEulerOnStiffeningSprings) {
+  converges_to_backward_euler(true);
+}
+
+TEST(Projective, RefactorsWhenAWeightChanges) {
+  Moving m = moving_cloth(6);
+  const double h = 1.0 / 60;
+  const auto used = make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 64);
+  NodeVectors f(m.net.node_count());
+  ClothState out = m.state, fresh_out = m.state;
+  m.net.net_forces(m.state, f);
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);
+  const ClothState before = out;
+  for (double& k : m.net.springs.stiffness)  // a material slider moves
+    k *= 3;
+  m.net.net_forces(m.state, f);
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // once: solved near the old factor
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // kept: refactored
+  // An integrator that never saw the old weights steps to the same bits; a
+  // stale factor (or a stale convergence rate) would not.
+  const auto fresh =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 64);
+  fresh->step(m.net, ForceInputs{}, m.state, f, h, fresh_out);
+  EXPECT_EQ(max_difference(out, fresh_out), 0.0);
+  EXPECT_GT(max_difference(out, before), 1e-6);  // and the change mattered
+}
+
+// A one-off step (another h: the end of a frame, an adaptive trial) is solved
+// by CG preconditioned with the factor it has, to the same fixed point.
+TEST(Projective, AOneOffStepSolvesItsOwnMatrix) {
+  const Moving m = moving_cloth(8);
+  const double h = 1.0 / 60, other = 0.37 / 60;
+  NodeVectors f(m.net.node_count());
+  m.net.net_forces(m.state, f);
+  const auto used =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
+  ClothState out = m.state, direct = m.state;
+  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // factored for h
+  const StepReport r = used->step(m.net, ForceInputs{}, m.state, f, other, out);
+  EXPECT_TRUE(r.cg_converged);
+  const auto fresh =
+      make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
+  fresh->step(m.net, ForceInputs{}, m.state, f, other, direct);  // factored for `other`
+  const ClothState reference = backward_euler(m.net, m.state, other);
+  const double moved = max_difference(reference, m.state);
+  EXPECT_LT(max_difference(out, reference), 1e-7 * moved);
+  EXPECT_LT(max_difference(direct, reference), 1e-7 * moved);
+}
+
+// Its factor is made for one step: the adaptive rule, which would ask for a new
+// one at every trial, is refused by name.
+TEST(Projective, TakesFixedStepsOnly) {
+  SolverSettings s;
+  s.integrator = IntegratorKind::projective;
+  s.adaptive = true;
+  try {
+    validate(s);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("solver.adaptive"), std::string::npos) << e.what();
+  }
+  s.adaptive = false;
+  EXPECT_NO_THROW(validate(s));
+}
+
+// A cloth whose factor would not fit is refused by name, and a live change of
+// integrator to it leaves the simulation as it was.
+TEST(Projective, RefusesAClothBeyondItsFactorsLimit) {
+  ClothTopology big;
+  big.rest_positions.assign(513 * 513, Vec3(0, 0, 0));
+  for (std::size_t i = 0; i < big.rest_positions.size(); ++i)
+    big.rest_positions[i] = Vec3(static_cast<double>(i % 513), 0, static_cast<double>(i / 513));
+  Material material;
+  const ClothNetwork net = ClothNetwork::build(big, material);
+  try {
+    make_integrator(IntegratorKind::projective, net);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("263169 nodes"), std::string::npos) << e.what();
+  }
+  Simulation sim(net, net.rest_state(big.rest_positions), SolverSettings{});
+  SolverSettings projective = sim.settings();
+  projective.integrator = IntegratorKind::projective;
+  EXPECT_THROW(sim.set_solver_settings(projective), std::invalid_argument);
+  EXPECT_EQ(sim.settings().integrator, IntegratorKind::network);
+  EXPECT_EQ(sim.advance(1e-3), RunStatus::ok);  // still steps, with what it had
+}
+
+// The Laplacian solve against a dense solve of the same matrix.
+TEST(SpringLaplacian, SolvesItsMatrix) {
+  const Moving m = moving_cloth(5);
+  const std::size_t n = m.net.node_count();
+  std::vector<double> node(n), spring(m.net.spring_count());
+  for (std::size_t i = 0; i < n; ++i)
+    node[i] = 0.01 * (1 + 0.1 * static_cast<double>(i % 3));
+  for (std::size_t s = 0; s < spring.size(); ++s)
+    spring[s] = 0.5 + 0.01 * static_cast<double>(s % 7);
+  SpringLaplacian P;
+  ASSERT_TRUE(P.factor(m.net.springs, node, spring, m.net.masses.free));
+  std::vector<double> xyz(3 * n), rhs(3 * n);
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    xyz[i] = rhs[i] = std::cos(1.3 * static_cast<double>(i));
+  P.solve3(xyz.data());
+  // P x, row by row, from the matrix's definition (planar: all x, then y, then z).
+  std::vector<double> px(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      px[c * n + i] = (m.net.masses.free[i] != 0.0 ? node[i] : 1.0) * xyz[c * n + i];
+  for (std::size_t s = 0; s < spring.size(); ++s) {
+    const std::size_t a = std::size_t(m.net.springs.node_a[s]);
+    const std::size_t b = std::size_t(m.net.springs.node_b[s]);
+    const bool fa = m.net.masses.free[a] != 0.0, fb = m.net.masses.free[b] != 0.0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (fa) px[c * n + a] += spring[s] * (xyz[c * n + a] - (fb ? xyz[c * n + b] : 0.0));
+      if (fb) px[c * n + b] += spring[s] * (xyz[c * n + b] - (fa ? xyz[c * n + a] : 0.0));
+    }
+  }
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    EXPECT_NEAR(px[i], rhs[i], 1e-12) << i;
+  // A free cloth without mass has no factor (and says so).
+  std::vector<double> none(n, 0.0), all_free(n, 1.0);
+  EXPECT_FALSE(P.factor(m.net.springs, none, spring, all_free));
+  EXPECT_FALSE(P.factored());
+}
+
+}  // namespace
+}  // namespace neurocloth

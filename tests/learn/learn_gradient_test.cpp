@@ -1,0 +1,333 @@
+// The fit's gradient is exact: back-propagation through time against central
+// finite differences of the loss, for every parameter kind, per family and per
+// element, with and without contact and wind, fixed and adaptive steps. And the
+// rollout the gradient differentiates is the simulation users run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "learn/fit_problem.h"
+#include "learn/rollout.h"
+#include "support/scene_builder.h"
+
+namespace neurocloth {
+namespace {
+
+using test::SceneBuilder;
+
+// Frames at times that fall between steps, a scattered subset of nodes, and
+// targets near the rest positions (any targets do for a gradient check).
+ReferenceMotion scattered_reference(const Scene& scene, double seconds, int frames,
+                                    unsigned seed = 7) {
+  ReferenceMotion ref;
+  ref.path = "synthetic";
+  ref.source = ReferenceMotion::Source::markers;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  const int n = static_cast<int>(scene.topology.rest_positions.size());
+  for (int f = 1; f <= frames; ++f) {
+    ReferenceFrame fr;
+    fr.time = seconds * (f - 0.37 * (f < frames)) / frames;
+    for (int i = f % 3; i < n; i += 2) {
+      fr.nodes.push_back(i);
+      fr.positions.push_back(scene.topology.rest_positions[i] +
+                             Vec3(jitter(rng), jitter(rng) - 0.05 * fr.time, jitter(rng)));
+    }
+    ref.frames.push_back(fr);
+  }
+  return ref;
+}
+
+// Checks components `which` of the gradient at theta0 (+ offset) against
+// central differences of step eps.
+void expect_exact_gradient(FitProblem& problem, const std::vector<Eigen::Index>& which,
+                           const Eigen::VectorXd& offset = Eigen::VectorXd(), double eps = 1e-6,
+                           double tolerance = 1e-6) {
+  Eigen::VectorXd theta = problem.initial();
+  if (offset.size() == theta.size()) theta += offset;
+  Eigen::VectorXd g;
+  const double E = problem.loss(theta, &g);
+  ASSERT_TRUE(std::isfinite(E));
+  ASSERT_GT(E, 0.0);
+  double scale = 0;  // (a loop: Eigen's vectorised maxCoeff trips GCC 12's -Wmaybe-uninitialized)
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+    scale = std::max(scale, std::abs(g[i]));
+  ASSERT_GT(scale, 0.0);
+  for (Eigen::Index i : which) {
+    Eigen::VectorXd up = theta, down = theta;
+    up[i] += eps;
+    down[i] -= eps;
+    const double fd = (problem.loss(up, nullptr) - problem.loss(down, nullptr)) / (2 * eps);
+    // Relative to the component itself, with a floor of 1e-4 of the largest
+    // component (a component near zero has no relative accuracy to speak of).
+    const double denom = std::max(std::abs(fd), 1e-4 * scale);
+    // Differences cannot resolve less than the loss's own rounding over 2 eps:
+    // two ulps of E in the difference of two losses.
+    const double resolution = 4 * std::numeric_limits<double>::epsilon() * std::abs(E) / (2 * eps);
+    EXPECT_LE(std::abs(g[i] - fd), tolerance * denom + resolution)
+        << "component " << i << ": adjoint " << g[i] << ", differences " << fd;
+  }
+}
+
+std::vector<Eigen::Index> all_of(const FitProblem& p) {
+  std::vector<Eigen::Index> v;
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(p.size()); ++i)
+    v.push_back(i);
+  return v;
+}
+
+Scene hanging_scene(bool adaptive = false) {
+  SceneBuilder b(5, 4, 0.05);
+  b.hanging().pin_top_row().material(80.0, 0.01, 0.08).solver("network", 0.002, adaptive);
+  b.set("/material/shear_constant", 30.0).set("/material/bend_constant", 5.0);
+  b.module({{"type", "air_drag"}, {"rate", 0.4}});
+  return b.parse();
+}
+
+TEST(LearnGradient, EveryFamilyParameterOnAHangingClothWithAirDrag) {
+  const Scene scene = hanging_scene();
+  FitSettings s;
+  s.params = {"spring_constant", "shear_constant", "bend_constant", "viscosity",
+              "node_mass",       "rest_length",    "air_drag.rate"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  ASSERT_EQ(p.size(), 7u);
+  expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, EveryWeightPerElement) {
+  const Scene scene = hanging_scene();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "node_mass", "rest_length"};
+  s.per_element = true;
+  s.smoothness = 1e-4;  // the regulariser's gradient is checked with the data term's
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  // Weights no longer uniform: a generic point, not the symmetric start.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  Eigen::VectorXd offset(static_cast<Eigen::Index>(p.size()));
+  for (Eigen::Index i = 0; i < offset.size(); ++i)
+    offset[i] = u(rng);
+  std::vector<Eigen::Index> which;
+  for (Eigen::Index i = 0; i < offset.size(); i += 3)
+    which.push_back(i);
+  expect_exact_gradient(p, which, offset);
+}
+
+// A material in words (assets/materials/cloth.fcl) at inputs inside its
+// terms' slopes, where every input moves some output.
+SceneBuilder& in_words(SceneBuilder& b, double mass = 0.55, double elasticity = 0.42,
+                       double force = 5.3) {
+  return b.set("/material",
+               {{"rules", "materials/cloth.fcl"},
+                {"inputs", {{"mass", mass}, {"elasticity", elasticity}, {"force", force}}}});
+}
+
+// Positions -> weights -> the fuzzy inference -> the linguistic inputs.
+TEST(LearnGradient, TheInputsOfAMaterialInWords) {
+  SceneBuilder b(5, 4, 0.05);
+  // Light corner nodes on springs of ~450 N/m: a step of 0.2 ms keeps it stable.
+  in_words(b.hanging().pin_top_row()).solver("network", 0.0002);
+  const Scene scene = b.parse();
+  ASSERT_TRUE(scene.fuzzy_material);
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  ASSERT_EQ(p.size(), 3u);
+  // Inputs are of order 1 (not logarithms): a step of 1e-5 keeps the
+  // differences' rounding below the tolerance.
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
+TEST(LearnGradient, AdaptivePropagationWithItsAcceptedSteps) {
+  const Scene scene = hanging_scene(true);
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "node_mass", "air_drag.rate"};
+  FitProblem p(scene, scattered_reference(scene, 0.25, 5), s);
+  expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, StiffeningSprings) {
+  SceneBuilder b(4, 4, 0.05);
+  b.hanging().pin_top_row().material(60.0, 0.02, 0.05).solver("network", 0.002);
+  b.set("/cloth/spring_function", {{"type", "stiffening"}, {"strain", 0.01}, {"factor", 4.0}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "rest_length"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 4), s);
+  expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, WindWithGustsAndItsCoefficients) {
+  SceneBuilder b(4, 5, 0.06);
+  b.hanging().pins(nlohmann::json::array({{0, 0}, {3, 0}})).material(50.0, 0.01, 0.05);
+  b.solver("network", 0.002);
+  b.module({{"type", "wind"},
+            {"velocity", {3.0, 0.5, 2.0}},
+            {"gust", {{"amplitude", 0.4}, {"period", 0.3}}}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "wind.velocity.x", "wind.velocity.y",
+              "wind.velocity.z", "wind.drag", "wind.lift"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  expect_exact_gradient(p, all_of(p));
+}
+
+// A cloth dropped flat onto a floor under tilted gravity: it lands, presses
+// and slides, so contact and kinetic friction are both active at the end.
+SceneBuilder sliding_drop() {
+  SceneBuilder b(4, 4, 0.05);
+  b.origin(Vec3(0, 0.012, 0)).material(60.0, 0.01, 0.05).friction(0.3);
+  b.gravity(Vec3(3.0, -9.81, 0.0)).solver("network", 0.002);
+  return b;
+}
+
+// How many nodes are on the floor (within its thickness) and sliding at time t.
+int sliding_on_floor(const Scene& scene, double t) {
+  Simulation sim = scene.make_simulation();
+  EXPECT_EQ(sim.advance(t), RunStatus::ok);
+  int count = 0;
+  for (std::size_t i = 0; i < sim.state().size(); ++i)
+    count += sim.state().position(i).y() < 0.0051 && sim.state().velocity(i).x() > 0.01;
+  return count;
+}
+
+TEST(LearnGradient, ThroughAPlaneWithTheMaterialsFriction) {
+  SceneBuilder b = sliding_drop();
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+  const Scene scene = b.parse();
+  ASSERT_GE(sliding_on_floor(scene, 0.2), 8);  // what the test is about
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "node_mass", "friction"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, TheInputsThroughAPlaneWithTheRuleBasesFriction) {
+  SceneBuilder b = sliding_drop();
+  // Friction 0.61 in these words: gravity tilted harder so that it slides.
+  in_words(b).solver("network", 0.0002).gravity(Vec3(8.0, -9.81, 0.0));
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+  const Scene scene = b.parse();
+  ASSERT_GT(scene.material.friction, 0.0);
+  ASSERT_GE(sliding_on_floor(scene, 0.2), 8);  // friction acts, so its derivatives count
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
+TEST(LearnGradient, ThroughACollidersOwnFrictionAndAirDrag) {
+  SceneBuilder b = sliding_drop();
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}, {"friction", 0.25}});
+  b.module({{"type", "air_drag"}, {"rate", 0.3}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "plane.friction", "air_drag.rate"};
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  expect_exact_gradient(p, all_of(p));
+}
+
+TEST(LearnGradient, OverASphereAndABoxEdge) {
+  SceneBuilder b(5, 5, 0.04);
+  b.origin(Vec3(-0.08, 0.13, -0.08)).material(60.0, 0.01, 0.05).friction(0.2);
+  b.solver("network", 0.002);
+  b.module({{"type", "sphere"}, {"center", {0.0, 0.0, 0.0}}, {"radius", 0.1}});
+  b.module({{"type", "box"},
+            {"center", {0.2, -0.02, 0.0}},
+            {"size", {0.2, 0.2, 0.6}},
+            {"friction", 0.4}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "friction", "box.friction"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
+// Per element where the cloth touches a floor with friction in the wind.
+TEST(LearnGradient, EveryWeightPerElementWithContactAndWind) {
+  SceneBuilder b = sliding_drop();
+  b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+  b.module({{"type", "wind"}, {"velocity", {2.0, 0.0, 1.0}}});
+  const Scene scene = b.parse();
+  ASSERT_GE(sliding_on_floor(scene, 0.2), 4);
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "node_mass",
+              "rest_length",     "friction",  "wind.velocity.x"};
+  s.per_element = true;
+  FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Eigen::VectorXd offset(static_cast<Eigen::Index>(p.size()));
+  for (Eigen::Index i = 0; i < offset.size(); ++i)
+    offset[i] = u(rng);
+  std::vector<Eigen::Index> which;
+  for (Eigen::Index i = 0; i < offset.size(); i += 5)
+    which.push_back(i);
+  which.push_back(offset.size() - 1);  // the wind
+  which.push_back(offset.size() - 2);  // the friction
+  expect_exact_gradient(p, which, offset, 1e-5);
+}
+
+// The loss compares what `simulate` would produce: the rollout's states at
+// step-aligned frames are the simulation's, bit for bit.
+// The adaptive steps may be far below dt (a stiff cloth): the plan stops at
+// its step cap, where a reference of 1000 s on a stiff cloth used to plan for
+// minutes and gigabytes. Both kinds of plan.
+TEST(LearnRollout, APlanStopsAtItsStepCap) {
+  for (const bool adaptive : {true, false}) {
+    const Scene scene = hanging_scene(adaptive);
+    EXPECT_GT(plan_steps(scene, 0.25).count(), 10u);
+    try {
+      plan_steps(scene, 0.25, 10);
+      ADD_FAILURE() << "a plan of more than 10 steps was made";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than 10 steps"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(LearnRollout, IsTheSimulationItDifferentiates) {
+  for (bool adaptive : {false, true}) {
+    SceneBuilder b = sliding_drop();
+    b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
+    b.module({{"type", "air_drag"}, {"rate", 0.3}});
+    if (adaptive) b.solver("network", 0.002, true);
+    const Scene scene = b.parse();
+    const double T = 0.15;
+    ReferenceMotion ref;
+    ReferenceFrame f;
+    f.time = T;
+    for (int i = 0; i < 16; ++i) {
+      f.nodes.push_back(i);
+      f.positions.push_back(Vec3::Zero());
+    }
+    ref.frames.push_back(f);
+    FitProblem p(scene, ref, FitSettings{});
+    const double E = p.loss(p.initial(), nullptr);
+    Simulation sim = scene.make_simulation();
+    ASSERT_EQ(sim.advance(T), RunStatus::ok);
+    double expected = 0;
+    for (int i = 0; i < 16; ++i)
+      expected += 0.5 * sim.state().position(i).squaredNorm();
+    EXPECT_EQ(E, expected) << (adaptive ? "adaptive" : "fixed");
+  }
+}
+
+// Checkpointing changes memory, not the gradient.
+TEST(LearnRollout, CheckpointedSegmentsGiveTheSameGradientInLessMemory) {
+  const Scene scene = hanging_scene();
+  FitSettings whole, segmented;
+  segmented.tape_budget_bytes = 1;  // forces segments of sqrt(T) steps
+  const ReferenceMotion ref = scattered_reference(scene, 0.4, 6);
+  FitProblem a(scene, ref, whole), b(scene, ref, segmented);
+  Eigen::VectorXd ga, gb;
+  const double Ea = a.loss(a.initial(), &ga), Eb = b.loss(b.initial(), &gb);
+  EXPECT_EQ(Ea, Eb);
+  EXPECT_EQ(ga, gb);
+  EXPECT_LT(b.peak_tape_bytes() * 4, a.peak_tape_bytes());
+}
+
+}  // namespace
+}  // namespace neurocloth

@@ -1,0 +1,227 @@
+// The window's choice of a solver that keeps a resized cloth in real time,
+// with the costs given (the probe itself is wall-clock and not tested here).
+#include "runtime/realtime_pick.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "support/test_support.h"
+#include "tradeoff/trade_csv.h"
+
+namespace neurocloth {
+namespace {
+
+// Costs by setting: the scene's own solver, and projective at `a + b * iterations`.
+struct FakeCosts {
+  double own, a, b;
+  mutable std::vector<SolverSettings> asked;
+  double operator()(const Scene& s) const {
+    asked.push_back(s.solver);
+    if (s.solver.integrator != IntegratorKind::projective) return own;
+    return a + b * s.solver.iterations;
+  }
+};
+
+TEST(RealtimePick, KeepsTheScenesSolverWhenItKeepsUp) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{0.5, 0.1, 0.1, {}};
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs));
+  EXPECT_FALSE(pick.switched);
+  EXPECT_EQ(pick.picked.integrator, scene.solver.integrator);
+  EXPECT_EQ(costs.asked.size(), 1u);  // nothing else timed
+}
+
+TEST(RealtimePick, TakesTheMostIterationsThatFitTheBudget) {
+  const Scene scene = test::asset_scene("table_drape");
+  ASSERT_TRUE(scene.solver.adaptive);
+  // 0.1 + 0.14 it: 4 iterations cost 0.66, 5 cost 0.8 (the budget is 0.7).
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs));
+  ASSERT_TRUE(pick.switched);
+  EXPECT_EQ(pick.picked.integrator, IntegratorKind::projective);
+  EXPECT_FALSE(pick.picked.adaptive);
+  EXPECT_DOUBLE_EQ(pick.picked.dt, kRealtimeStep);
+  EXPECT_EQ(pick.picked.iterations, 4);
+  EXPECT_NEAR(pick.picked_cost, 0.66, 1e-12);
+  EXPECT_EQ(pick.own.integrator, scene.solver.integrator);  // what "back" restores
+  EXPECT_TRUE(pick.own.adaptive);
+  EXPECT_NE(pick.note.find("projective, 4 iterations"), std::string::npos) << pick.note;
+  EXPECT_NE(pick.note.find("0.01x real time"), std::string::npos) << pick.note;
+  EXPECT_NO_THROW(validate(pick.picked));
+}
+
+TEST(RealtimePick, SaysWhenEvenOneIterationDoesNotKeepUp) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{100.0, 1.0, 0.5, {}};  // one iteration: 1.5 s per simulated second
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs));
+  ASSERT_TRUE(pick.switched);
+  EXPECT_EQ(pick.picked.iterations, 1);
+  EXPECT_NE(pick.note.find("even this runs only 0.67x"), std::string::npos) << pick.note;
+}
+
+TEST(RealtimePick, SaysWhenOneIterationKeepsUpWithLittleToSpare) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{100.0, 0.7, 0.1, {}};  // one iteration: 0.8 s per simulated second
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs));
+  ASSERT_TRUE(pick.switched);
+  EXPECT_EQ(pick.picked.iterations, 1);
+  EXPECT_NE(pick.note.find("this runs 1.2x, with little to spare"), std::string::npos) << pick.note;
+}
+
+TEST(RealtimePick, AMachineFastEnoughForTheDefaultIterationsGetsThem) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{100.0, 0.01, 0.01, {}};
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs));
+  ASSERT_TRUE(pick.switched);
+  EXPECT_EQ(pick.picked.iterations, kDefaultProjectiveIterations);
+}
+
+// The table drape resized to 8 x 8 (the costs are given: nothing is run).
+Scene drape_at_8() {
+  return resized_grid(test::asset_scene("table_drape"), 8);
+}
+const char* kDrapeFile = "assets/scenes/table_drape.json";
+
+TradeRow projective_row(double dt, int iterations, double error) {
+  TradeRow r;
+  r.method = "projective";
+  r.parameter = "dt";
+  r.dt = r.value = dt;
+  r.iterations = iterations;
+  r.steps = 60;
+  r.position_error_max = error;
+  r.position_error_rms = error / 4;
+  r.energy_error = error / 10;
+  r.wall_per_simulated_second = 0.1 * iterations;
+  r.force_evaluations = 60;
+  return r;
+}
+
+// A trade measured at `grid` x `grid` with `rows`, written where a test can read it.
+std::string write_trade(const std::string& name, int grid, const std::vector<TradeRow>& rows) {
+  TradeTable t;
+  t.scene = "table_drape";
+  t.scene_file = kDrapeFile;
+  t.seconds = 1;
+  t.samples = 4;
+  t.grid_rows = t.grid_cols = grid;
+  t.cloth_size = 1.7;
+  t.energy_scale = 36;
+  t.reference.dt = 1e-5;
+  t.reference.change = 1e-3;
+  t.reference.stopped_by = "budget";
+  t.rows = rows;
+  // A folder of each test's own: ctest runs these tests side by side, and two
+  // writing one file would read each other's trade.
+  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick/" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::trunc) << trade_csv(t);
+  return path;
+}
+
+// The pick on the drape at 8 x 8 with a trade of `rows` beside it, where up to
+// 4 iterations fit the budget.
+RealtimePick pick_at_8(const std::vector<TradeRow>& rows) {
+  const std::string path = write_trade("drape.8.csv", 8, rows);
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  return pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
+}
+
+// Errors falling with the iterations, as on a smooth cloth: 30% / iterations.
+std::vector<TradeRow> falling_errors() {
+  std::vector<TradeRow> rows;
+  for (int it = 1; it <= 10; ++it)
+    rows.push_back(projective_row(kRealtimeStep, it, 0.3 / it));
+  return rows;
+}
+
+TEST(RealtimePick, QuotesThePickedSettingsErrorMeasuredAtThisSize) {
+  std::vector<TradeRow> rows = falling_errors();
+  // Neither is the window's setting: another step, and a run that did not finish.
+  rows.push_back(projective_row(1.0 / 64, 4, 1e-6));
+  TradeRow diverged = projective_row(kRealtimeStep, 4, 0);
+  diverged.status = "diverged";
+  rows.insert(rows.begin(), diverged);
+  const std::string path = write_trade("drape.8.csv", 8, rows);
+  const SizedTrade trade = find_sized_trade(kDrapeFile, 8, path);
+  ASSERT_TRUE(trade.table) << trade.problem;
+  FakeCosts costs{100.0, 0.1, 0.14, {}};  // 4 iterations fit, 5 do not
+  const RealtimePick pick = pick_for_real_time(drape_at_8(), std::ref(costs), trade);
+  ASSERT_TRUE(pick.switched);
+  EXPECT_EQ(pick.picked.iterations, 4);
+  ASSERT_TRUE(pick.measured);
+  EXPECT_EQ(pick.measured->iterations, 4);
+  EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.075);
+  EXPECT_EQ(pick.measured_in, path);
+  EXPECT_NE(pick.note.find("Measured at 8 x 8: projective 4 it., dt 1/60 s: max position error "
+                           "7.5% of the cloth's size over its first 1 s (rms 1.9%; the reference "
+                           "is good to 0.1%), in " +
+                           path),
+            std::string::npos)
+      << pick.note;
+}
+
+TEST(RealtimePick, PrefersTheLeastMeasuredErrorAmongTheSettingsThatFit) {
+  // 2 iterations land nearest the reference; 7 nearer still, but they do not fit.
+  const RealtimePick pick =
+      pick_at_8({projective_row(kRealtimeStep, 1, 0.2), projective_row(kRealtimeStep, 2, 0.05),
+                 projective_row(kRealtimeStep, 4, 0.06), projective_row(kRealtimeStep, 7, 0.01)});
+  EXPECT_EQ(pick.picked.iterations, 2);
+  ASSERT_TRUE(pick.measured);
+  EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.05);
+  EXPECT_NEAR(pick.picked_cost, 0.1 + 0.14 * 2, 1e-12);
+}
+
+// Errors within the reference's resolution (here 0.1% of the size) of the
+// least cannot be told apart: then the fewest iterations among them, which
+// leave the renderer the most of the machine. Measured from the least error,
+// not from the first count looked at: 2 ties with 3 (the least), 1 does not.
+TEST(RealtimePick, ErrorsTheReferenceCannotTellApartAreATieWonByTheCheapest) {
+  const RealtimePick pick = pick_at_8(
+      {projective_row(kRealtimeStep, 1, 0.0520), projective_row(kRealtimeStep, 2, 0.0509),
+       projective_row(kRealtimeStep, 3, 0.0500), projective_row(kRealtimeStep, 4, 0.0515)});
+  EXPECT_EQ(pick.picked.iterations, 2);
+  ASSERT_TRUE(pick.measured);
+  EXPECT_DOUBLE_EQ(pick.measured->position_error_max, 0.0509);
+}
+
+TEST(RealtimePick, SaysWhenTheErrorAtThisSizeIsNotMeasuredAndHowToMeasureIt) {
+  const std::string nowhere = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick/none.8.csv";
+  std::filesystem::remove(nowhere);
+  const SizedTrade trade = find_sized_trade(kDrapeFile, 8, nowhere);
+  EXPECT_FALSE(trade.table);
+  EXPECT_TRUE(trade.problem.empty()) << trade.problem;
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  const RealtimePick pick = pick_for_real_time(drape_at_8(), std::ref(costs), trade);
+  EXPECT_EQ(pick.picked.iterations, 4);  // the most that fit, as without a trade
+  EXPECT_FALSE(pick.measured);
+  for (const std::string& part :
+       {std::string("Its error at 8 x 8 is not measured; to measure it: neurocloth-cli tradeoff ") +
+            kDrapeFile + " --size 8 ",
+        std::string("--methods projective --dt 1/60 --projective-iterations 1,2,3,4,5,6,7,8,9,10"),
+        "--out " + nowhere.substr(0, nowhere.size() - 4)})
+    EXPECT_NE(pick.note.find(part), std::string::npos) << part << "\n not in: " << pick.note;
+}
+
+TEST(RealtimePick, NeverQuotesATradeMeasuredAtAnotherSize) {
+  const std::string path = write_trade("drape.32.csv", 32, falling_errors());
+  const SizedTrade trade = find_sized_trade(kDrapeFile, 8, path);
+  EXPECT_FALSE(trade.table);
+  EXPECT_NE(trade.problem.find(path), std::string::npos) << trade.problem;
+  EXPECT_NE(trade.problem.find("# grid"), std::string::npos) << trade.problem;
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  const RealtimePick pick = pick_for_real_time(drape_at_8(), std::ref(costs), trade);
+  EXPECT_FALSE(pick.measured);
+  EXPECT_NE(pick.note.find("Its error at 8 x 8 is not measured (" + path), std::string::npos)
+      << pick.note;
+  EXPECT_NE(pick.note.find("measured on a 32 x 32 grid, not 8 x 8"), std::string::npos)
+      << pick.note;
+}
+
+}  // namespace
+}  // namespace neurocloth
