@@ -57,10 +57,12 @@ inline constexpr double kRealtimeBudget = 0.7;
 // step at kRealtimeStep with the most iterations (1..kDefaultProjectiveIterations)
 // whose cost, interpolated linearly from probes at 1 and 4 iterations, fits the
 // budget; else 1 iteration, saying that even it does not keep up. When `trade`
-// holds measured errors for counts that fit, the one of least error among them
-// is taken instead (a quoted error beats an unmeasured guess), and the note
-// quotes it; otherwise the note says the error is not measured and how to
-// (nothing, when `trade` names no file: nobody looked).
+// holds measured errors for counts that fit, the fewest iterations whose error
+// is within the reference's resolution of the least among them is taken
+// instead (a quoted error beats an unmeasured guess, and fewer iterations
+// leave the renderer more of the machine), and the note quotes it; otherwise
+// the note says the error is not measured and how to (nothing, when `trade`
+// names no file: nobody looked).
 RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
                                 const SizedTrade& trade = {});
 
