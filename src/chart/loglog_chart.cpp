@@ -10,12 +10,11 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "core/base/vec3.h"
 #include "core/io/text_file.h"
 
 namespace neurocloth {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool plottable(double x, double y) {
   return x > 0 && y > 0 && std::isfinite(x) && std::isfinite(y);

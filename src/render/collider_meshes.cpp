@@ -3,10 +3,11 @@
 #include <cmath>
 #include <type_traits>
 
+#include "core/base/vec3.h"
+
 namespace neurocloth {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kSlices = 48;  // around a sphere or capsule
 constexpr int kStacks = 24;  // pole to pole
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "render/render_palette.h"
+
 namespace neurocloth {
 
 class GlProgram {
@@ -27,5 +29,10 @@ class GlProgram {
   GLuint id_ = 0;
   std::string name_;  // "vertex_file + fragment_file", for messages
 };
+
+// Sets a vec3 colour uniform from the palette.
+inline void set_colour(GLint at, const palette::Colour& c) {
+  glUniform3f(at, c[0], c[1], c[2]);
+}
 
 }  // namespace neurocloth

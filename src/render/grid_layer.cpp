@@ -2,17 +2,10 @@
 
 #include <vector>
 
+#include "render/gl_program.h"
 #include "render/render_palette.h"
 
 namespace neurocloth {
-namespace {
-
-void set_colour(GLint at, const palette::Colour& c) {
-  glUniform3f(at, c[0], c[1], c[2]);
-}
-
-}  // namespace
-
 GridLayer::GridLayer(const std::string& shader_dir)
     : program_(shader_dir, "grid.vert", "grid.frag") {
   u_ = {program_.uniform("u_view_projection"), program_.uniform("u_cell"),

@@ -7,10 +7,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/base/vec3.h"
+
 namespace neurocloth {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Pitch stays this far from straight up or down, where the view's up vector
 // (world +y) would be parallel to the line of sight.
 constexpr double kPitchLimit = kPi / 2 - 1e-4;

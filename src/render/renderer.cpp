@@ -23,10 +23,6 @@ constexpr int kOverlayFloats = 7;  // x, y, z, r, g, b, a
 // Plane colliders reach this many grid sizes: to the horizon of any framed view.
 constexpr double kPlaneReach = 25;
 
-void set_colour(GLint at, const palette::Colour& c) {
-  glUniform3f(at, c[0], c[1], c[2]);
-}
-
 // Maps pixels (origin top left, y down) to clip space, for the 2D legend.
 Eigen::Matrix4f pixel_projection(int width, int height) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();

@@ -11,7 +11,7 @@
 namespace neurocloth {
 namespace {
 
-const char* kRules = R"(
+const char* kExampleRules = R"(
 FUNCTION_BLOCK b
 VAR_INPUT mass : REAL; force : REAL; END_VAR
 VAR_OUTPUT k : REAL; c : REAL; END_VAR
@@ -27,7 +27,7 @@ END_FUNCTION_BLOCK
 )";
 
 fuzzy::FuzzySystem rules() {
-  return fuzzy::parse_fcl(kRules, "b.fcl");
+  return fuzzy::parse_fcl(kExampleRules, "b.fcl");
 }
 
 TEST(RuleExamples, ReadsWithABomCrlfCommentsAndBlankLines) {

@@ -21,7 +21,7 @@ using fuzzy::FuzzySystem;
 
 // One input, three triangles; a Sugeno output (singletons and a linear
 // consequent) and a Mamdani output with three triangle sets.
-const char* kRules = R"(
+const char* kTuningRules = R"(
 FUNCTION_BLOCK small
 VAR_INPUT x : REAL; z : REAL; END_VAR
 VAR_OUTPUT y : REAL; s : REAL; END_VAR
@@ -61,7 +61,7 @@ END_FUNCTION_BLOCK
 )";
 
 FuzzySystem small() {
-  return fuzzy::parse_fcl(kRules, "small.fcl");
+  return fuzzy::parse_fcl(kTuningRules, "small.fcl");
 }
 
 fuzzy::Parameter parameter(const FuzzySystem& s, const std::string& name) {

@@ -15,7 +15,7 @@ namespace {
 
 using namespace render_test;
 
-constexpr int kWidth = 480, kHeight = 270;
+constexpr int kCacheWidth = 480, kCacheHeight = 270;
 
 // Pixels with a channel more than one level apart.
 int pixels_apart(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
@@ -34,19 +34,19 @@ TEST(BackgroundCache, EveryFrameFromTheCopyIsTheFrameDrawnFromScratch) {
   const FrameSnapshot early = scene_snapshot("table_drape", 0.3);
   FrameSnapshot late = scene_snapshot("table_drape", 0.6);
   late.geometry = early.geometry;  // one scene: the copy's colliders and grid stay valid
-  const OrbitCamera framed = framing_camera(early, double(kWidth) / kHeight);
+  const OrbitCamera framed = framing_camera(early, double(kCacheWidth) / kCacheHeight);
   OrbitCamera turned = framed;
   turned.yaw += 0.4;
 
-  OsmesaContext context(kWidth, kHeight);
+  OsmesaContext context(kCacheWidth, kCacheHeight);
   Renderer cached, plain;
   plain.set_background_cache(false);
   auto expect_same = [&](const FrameSnapshot& s, const OrbitCamera& c, const RenderOptions& o,
                          const char* what) {
-    cached.draw(s, c, o, kWidth, kHeight);
-    const std::vector<std::uint8_t> a = cached.read_pixels(kWidth, kHeight);
-    plain.draw(s, c, o, kWidth, kHeight);
-    const std::vector<std::uint8_t> b = plain.read_pixels(kWidth, kHeight);
+    cached.draw(s, c, o, kCacheWidth, kCacheHeight);
+    const std::vector<std::uint8_t> a = cached.read_pixels(kCacheWidth, kCacheHeight);
+    plain.draw(s, c, o, kCacheWidth, kCacheHeight);
+    const std::vector<std::uint8_t> b = plain.read_pixels(kCacheWidth, kCacheHeight);
     // The copied depth may settle a pixel or two where the cloth lies on the
     // table the other way (measured: one pixel of 129,600); a stale or wrong
     // copy differs by thousands.

@@ -11,7 +11,7 @@
 namespace neurocloth {
 namespace {
 
-constexpr int kWidth = 640, kHeight = 360;
+constexpr int kViewWidth = 640, kViewHeight = 360;
 constexpr double kPi = 3.14159265358979323846;
 
 std::vector<OrbitCamera> cameras() {
@@ -36,8 +36,8 @@ TEST(OrbitCamera, RayThroughTheProjectionOfAPointPassesThroughIt) {
     for (int k = 0; k < 200; ++k) {
       const Vec3 p = c.target + c.distance * 0.5 * Vec3(u(rng), u(rng), u(rng));
       double px, py;
-      ASSERT_TRUE(c.project(p, kWidth, kHeight, px, py));
-      const Ray r = c.ray(px, py, kWidth, kHeight);
+      ASSERT_TRUE(c.project(p, kViewWidth, kViewHeight, px, py));
+      const Ray r = c.ray(px, py, kViewWidth, kViewHeight);
       EXPECT_NEAR(r.direction.norm(), 1.0, 1e-12);
       EXPECT_LT((r.origin - c.eye()).norm(), 1e-12);
       const double t = (p - r.origin).dot(r.direction);
@@ -47,17 +47,17 @@ TEST(OrbitCamera, RayThroughTheProjectionOfAPointPassesThroughIt) {
 }
 
 TEST(OrbitCamera, ProjectAgreesWithTheMatricesTheRendererUses) {
-  const double aspect = double(kWidth) / kHeight;
+  const double aspect = double(kViewWidth) / kViewHeight;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   for (const OrbitCamera& c : cameras())
     for (int k = 0; k < 100; ++k) {
       const Vec3 p = c.target + c.distance * 0.4 * Vec3(u(rng), u(rng), u(rng));
       double px, py;
-      ASSERT_TRUE(c.project(p, kWidth, kHeight, px, py));
+      ASSERT_TRUE(c.project(p, kViewWidth, kViewHeight, px, py));
       const Eigen::Vector3d ndc = clip_to_ndc(c, p, aspect);
-      EXPECT_NEAR((ndc.x() + 1) / 2 * kWidth, px, 1e-3 * kWidth);
-      EXPECT_NEAR((1 - ndc.y()) / 2 * kHeight, py, 1e-3 * kHeight);
+      EXPECT_NEAR((ndc.x() + 1) / 2 * kViewWidth, px, 1e-3 * kViewWidth);
+      EXPECT_NEAR((1 - ndc.y()) / 2 * kViewHeight, py, 1e-3 * kViewHeight);
       EXPECT_GT(ndc.z(), -1);  // between the near and far planes
       EXPECT_LT(ndc.z(), 1);
     }
@@ -66,7 +66,7 @@ TEST(OrbitCamera, ProjectAgreesWithTheMatricesTheRendererUses) {
 TEST(OrbitCamera, TheTargetIsInTheMiddleAndTheEyeAtTheDistance) {
   for (const OrbitCamera& c : cameras()) {
     EXPECT_NEAR((c.eye() - c.target).norm(), c.distance, 1e-12);
-    const Ray r = c.ray(kWidth / 2.0, kHeight / 2.0, kWidth, kHeight);
+    const Ray r = c.ray(kViewWidth / 2.0, kViewHeight / 2.0, kViewWidth, kViewHeight);
     EXPECT_LT((r.direction - c.forward()).norm(), 1e-12);
     const Eigen::Vector3d ndc = clip_to_ndc(c, c.target, 2.0);
     EXPECT_NEAR(ndc.x(), 0, 1e-5);
@@ -81,7 +81,7 @@ TEST(OrbitCamera, TheTargetIsInTheMiddleAndTheEyeAtTheDistance) {
 TEST(OrbitCamera, PointsBehindTheEyeDoNotProject) {
   const OrbitCamera c;
   double px, py;
-  EXPECT_FALSE(c.project(c.eye() - c.forward(), kWidth, kHeight, px, py));
+  EXPECT_FALSE(c.project(c.eye() - c.forward(), kViewWidth, kViewHeight, px, py));
 }
 
 TEST(OrbitCamera, FrameKeepsEveryCornerOfABoxInViewAndFillsIt) {
@@ -125,7 +125,7 @@ TEST(OrbitCamera, RotateClampsThePitchShortOfThePoles) {
 TEST(OrbitCamera, PanMovesTheTargetAcrossTheViewAndZoomChangesOnlyTheDistance) {
   OrbitCamera c;
   const Vec3 before = c.target;
-  c.pan(30, -20, kHeight);
+  c.pan(30, -20, kViewHeight);
   const Vec3 moved = c.target - before;
   EXPECT_GT(moved.norm(), 0);
   EXPECT_NEAR(moved.dot(c.forward()), 0, 1e-12);

@@ -10,7 +10,7 @@ namespace neurocloth {
 namespace {
 
 using render_test::scene_snapshot;
-constexpr int kWidth = 800, kHeight = 600;
+constexpr int kPickWidth = 800, kPickHeight = 600;
 
 // Straight down onto the middle of the flat cloth.
 OrbitCamera looking_down() {
@@ -38,8 +38,8 @@ TEST(Picking, TheRayThroughANodesPixelPicksThatNode) {
     int picked = 0;
     for (std::size_t k = 0; k < 400; ++k) {
       double px, py;
-      ASSERT_TRUE(c.project(s.node(k), kWidth, kHeight, px, py));
-      const Pick p = pick_node(c.ray(px, py, kWidth, kHeight), s, 0.01);
+      ASSERT_TRUE(c.project(s.node(k), kPickWidth, kPickHeight, px, py));
+      const Pick p = pick_node(c.ray(px, py, kPickWidth, kPickHeight), s, 0.01);
       EXPECT_EQ(p.node, int(k));
       EXPECT_LT((p.point - s.node(k)).norm(), 1e-6);
       EXPECT_NEAR(p.ray_t, (s.node(k) - c.eye()).norm(), 1e-6);
@@ -55,8 +55,8 @@ TEST(Picking, AHitInsideATrianglePicksItsNearestCorner) {
   // A point a fifth of the way from node 21 (row 1, col 1) towards node 22: node 21 is nearest.
   const Vec3 p = s.node(21) + 0.2 * (s.node(22) - s.node(21)) + 0.1 * (s.node(41) - s.node(21));
   double px, py;
-  ASSERT_TRUE(c.project(p, kWidth, kHeight, px, py));
-  const Pick pick = pick_node(c.ray(px, py, kWidth, kHeight), s, 0.0);
+  ASSERT_TRUE(c.project(p, kPickWidth, kPickHeight, px, py));
+  const Pick pick = pick_node(c.ray(px, py, kPickWidth, kPickHeight), s, 0.0);
   EXPECT_EQ(pick.node, 21);
   EXPECT_LT((pick.point - p).norm(), 1e-6);
 }
@@ -71,8 +71,8 @@ TEST(Picking, TheNearerLayerWinsWhereTheClothOverlapsItself) {
   }
   const OrbitCamera c = looking_down();
   double px, py;
-  ASSERT_TRUE(c.project(s.node(5 * 20 + 5), kWidth, kHeight, px, py));  // under row 15
-  const Pick p = pick_node(c.ray(px, py, kWidth, kHeight), s, 0.01);
+  ASSERT_TRUE(c.project(s.node(5 * 20 + 5), kPickWidth, kPickHeight, px, py));  // under row 15
+  const Pick p = pick_node(c.ray(px, py, kPickWidth, kPickHeight), s, 0.01);
   EXPECT_GE(p.node, 200);
   EXPECT_NEAR(p.point.y(), 1.2, 1e-6);
 }
@@ -88,7 +88,7 @@ TEST(Picking, AMissPicksNothingOrTheNearestNodeWithinTolerance) {
   EXPECT_EQ(near.point, s.node(0));
   EXPECT_NEAR(near.ray_t, 2, 1e-6);
   // Away from the cloth entirely, or pointing away from it.
-  EXPECT_EQ(pick_node(c.ray(2, 2, kWidth, kHeight), s, 0.01).node, -1);
+  EXPECT_EQ(pick_node(c.ray(2, 2, kPickWidth, kPickHeight), s, 0.01).node, -1);
   EXPECT_EQ(pick_node({Vec3(0.5, 3, 0.5), Vec3(0, 1, 0)}, s, 10.0).node, -1);
   // A snapshot without triangles still picks by distance to the ray.
   FrameSnapshot bare = s;
@@ -101,7 +101,7 @@ TEST(Picking, TheDragPointLiesOnTheRayAndOnThePlaneFacingTheCamera) {
     const Vec3 anchor(0.3, 1.0, 0.6);
     for (const auto& [px, py] : std::vector<std::pair<double, double>>{
              {400, 300}, {10, 20}, {790, 590}, {123.5, 456.25}}) {
-      const Ray r = c.ray(px, py, kWidth, kHeight);
+      const Ray r = c.ray(px, py, kPickWidth, kPickHeight);
       const Vec3 d = drag_point(r, anchor, c);
       EXPECT_NEAR((d - anchor).dot(c.forward()), 0, 1e-9);
       const double t = (d - r.origin).dot(r.direction);
@@ -109,8 +109,9 @@ TEST(Picking, TheDragPointLiesOnTheRayAndOnThePlaneFacingTheCamera) {
     }
     // The ray through the anchor's own pixel leaves it where it is.
     double px, py;
-    ASSERT_TRUE(c.project(anchor, kWidth, kHeight, px, py));
-    EXPECT_LT((drag_point(c.ray(px, py, kWidth, kHeight), anchor, c) - anchor).norm(), 1e-9);
+    ASSERT_TRUE(c.project(anchor, kPickWidth, kPickHeight, px, py));
+    EXPECT_LT((drag_point(c.ray(px, py, kPickWidth, kPickHeight), anchor, c) - anchor).norm(),
+              1e-9);
   }
 }
 

@@ -15,9 +15,7 @@
 namespace neurocloth {
 namespace {
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 bool all_equal(const std::vector<double>& v, double x) {
   return std::all_of(v.begin(), v.end(), [x](double e) { return e == x; });

@@ -12,17 +12,13 @@
 #include <vector>
 
 #include "runtime/simulation_thread.h"
+#include "support/lockstep.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
 namespace {
 
-SimulationThread::Options lockstep(bool paused = false) {
-  SimulationThread::Options o;
-  o.lockstep = true;
-  o.start_paused = paused;
-  return o;
-}
+using test::lockstep;
 
 constexpr double kFrame = 1.0 / 60.0;
 constexpr double kHangingDt = 1e-3;  // hanging.json: fixed step

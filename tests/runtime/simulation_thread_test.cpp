@@ -16,6 +16,7 @@
 #include <random>
 #include <thread>
 
+#include "support/lockstep.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
@@ -37,13 +38,7 @@ SimulationThread::Options flat_out() {
   return o;
 }
 
-// Time moves only by Advance commands: "it ran on" is then a fact about the
-// commands, never about how fast this machine is.
-SimulationThread::Options lockstep() {
-  SimulationThread::Options o;
-  o.lockstep = true;
-  return o;
-}
+using test::lockstep;
 
 // Advances `seconds` of simulated time and waits until it is done.
 void run_for(SimulationThread& sim, double seconds) {
@@ -51,9 +46,7 @@ void run_for(SimulationThread& sim, double seconds) {
   sim.wait_for_commands();
 }
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 // Polls `done` until it holds or `timeout` passes (a bound, not a speed check).
 bool eventually(const std::function<bool()>& done, std::chrono::seconds timeout = 20s) {

@@ -13,6 +13,18 @@
 
 namespace neurocloth::test {
 
+// How many of `t`'s springs are of family `f`.
+inline int count(const ClothTopology& t, SpringFamily f) {
+  int n = 0;
+  for (const auto& s : t.springs)
+    n += s.family == f;
+  return n;
+}
+
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
 inline Scene asset_scene(const std::string& name) {
   return load_scene(assets_directory() + "/scenes/" + name + ".json");
 }

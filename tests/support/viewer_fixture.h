@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io/asset_paths.h"
 #include "support/process_run.h"
 
 namespace neurocloth::viewer_test {
@@ -26,6 +27,12 @@ using test::read_text;
 
 inline bool have_xvfb() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+#define SKIP_WITHOUT_XVFB() \
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed: no display to test the window on"
+
+inline std::string scene_asset(const std::string& name) {
+  return assets_directory() + "/scenes/" + name + ".json";
 }
 
 // Each test gets its own folder, which is also the working directory of the run.

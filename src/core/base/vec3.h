@@ -6,4 +6,5 @@
 
 namespace neurocloth {
 using Vec3 = Eigen::Vector3d;
+inline constexpr double kPi = 3.14159265358979323846;
 }  // namespace neurocloth

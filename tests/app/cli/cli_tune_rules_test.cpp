@@ -10,7 +10,7 @@ namespace neurocloth::cli_test {
 namespace {
 
 // A Sugeno output (singletons) over one input: least squares is exact.
-const char* kRules = R"(FUNCTION_BLOCK t
+const char* kTunedRules = R"(FUNCTION_BLOCK t
 VAR_INPUT x : REAL; END_VAR
 VAR_OUTPUT y : REAL; END_VAR
 FUZZIFY x
@@ -34,7 +34,7 @@ END_FUNCTION_BLOCK
 class CliTuneRules : public Cli {
  protected:
   std::string out() const { return (out_dir() / "tuned.fcl").string(); }
-  std::string rules() const { return write("rules.fcl", kRules); }
+  std::string rules() const { return write("rules.fcl", kTunedRules); }
   std::vector<std::string> args(const std::string& examples) const {
     return {"tune-rules", "--rules", rules(), "--examples", examples, "--out", out()};
   }
@@ -154,8 +154,8 @@ MF2='b':'constant',[90]
   fs::remove(out_dir() / "tuned.examples.csv");
   // A rule base a .fis cannot hold (a point list) is refused before the
   // search, naming --out.
-  const std::string points =
-      write("points.fcl", with(kRules, "TERM low := trian 0 0 10;", "TERM low := (0, 1) (10, 0);"));
+  const std::string points = write(
+      "points.fcl", with(kTunedRules, "TERM low := trian 0 0 10;", "TERM low := (0, 1) (10, 0);"));
   expect_input_error({"tune-rules", "--rules", points, "--examples", write("ex2.csv", csv), "--out",
                       (out_dir() / "p.fis").string(), "--what", "consequents"},
                      {"--out", ".fis"});

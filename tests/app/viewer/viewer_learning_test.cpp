@@ -16,13 +16,6 @@
 namespace neurocloth::viewer_test {
 namespace {
 
-#define SKIP_WITHOUT_XVFB() \
-  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed: no display to test the window on"
-
-std::string scene_asset(const std::string& name) {
-  return assets_directory() + "/scenes/" + name + ".json";
-}
-
 json event(double t, const char* type, json fields = json::object()) {
   fields["t"] = t;
   fields["type"] = type;

@@ -19,15 +19,8 @@
 namespace neurocloth::viewer_test {
 namespace {
 
-#define SKIP_WITHOUT_XVFB() \
-  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed: no display to test the window on"
-
 constexpr int kWidth = 1280, kHeight = 720;
 constexpr double kControlWidth = 400;  // the ImGui controls cover the left of the window
-
-std::string scene_asset(const std::string& name) {
-  return assets_directory() + "/scenes/" + name + ".json";
-}
 
 Vec3 position(const json& at) {
   return {at.at(0).get<double>(), at.at(1).get<double>(), at.at(2).get<double>()};

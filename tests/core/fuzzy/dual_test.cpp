@@ -22,7 +22,7 @@ struct Dense {
   std::vector<double> d = std::vector<double>(kSeeds, 0.0);
 };
 
-Dense combine(double v, double a, const Dense& x, double b, const Dense& y) {
+Dense combine_duals(double v, double a, const Dense& x, double b, const Dense& y) {
   Dense r;
   r.v = v;
   for (std::uint32_t i = 0; i < kSeeds; ++i)
@@ -70,23 +70,24 @@ TEST(Dual, EveryOperationMatchesDenseDerivatives) {
       const auto [a, da] = random_operand(random, na);
       const auto [b, db] = random_operand(random, nb);
       const auto [p, dp] = random_operand(random, nb, 0.5, 3);  // positive, for sqrt, pow
-      expect_same(a + b, combine(da.v + db.v, 1, da, 1, db), "a + b");
-      expect_same(a - b, combine(da.v - db.v, 1, da, -1, db), "a - b");
-      expect_same(-a, combine(-da.v, -1, da, 0, db), "-a");
-      expect_same(a * b, combine(da.v * db.v, db.v, da, da.v, db), "a * b");
-      expect_same(a / p, combine(da.v / dp.v, 1 / dp.v, da, -da.v / (dp.v * dp.v), dp), "a / p");
+      expect_same(a + b, combine_duals(da.v + db.v, 1, da, 1, db), "a + b");
+      expect_same(a - b, combine_duals(da.v - db.v, 1, da, -1, db), "a - b");
+      expect_same(-a, combine_duals(-da.v, -1, da, 0, db), "-a");
+      expect_same(a * b, combine_duals(da.v * db.v, db.v, da, da.v, db), "a * b");
+      expect_same(a / p, combine_duals(da.v / dp.v, 1 / dp.v, da, -da.v / (dp.v * dp.v), dp),
+                  "a / p");
       Dual sum = a;
       sum += b;
-      expect_same(sum, combine(da.v + db.v, 1, da, 1, db), "a += b");
+      expect_same(sum, combine_duals(da.v + db.v, 1, da, 1, db), "a += b");
       const double s = std::sqrt(dp.v);
-      expect_same(sqrt(p), combine(s, 0.5 / s, dp, 0, da), "sqrt(p)");
+      expect_same(sqrt(p), combine_duals(s, 0.5 / s, dp, 0, da), "sqrt(p)");
       const double e = std::exp(da.v);
-      expect_same(exp(a), combine(e, e, da, 0, db), "exp(a)");
+      expect_same(exp(a), combine_duals(e, e, da, 0, db), "exp(a)");
       const double r = std::pow(dp.v, db.v);
       expect_same(pow(p, b),
-                  combine(r, db.v * std::pow(dp.v, db.v - 1), dp, r * std::log(dp.v), db),
+                  combine_duals(r, db.v * std::pow(dp.v, db.v - 1), dp, r * std::log(dp.v), db),
                   "pow(p, b)");
-      expect_same(abs(a), da.v < 0 ? combine(-da.v, -1, da, 0, db) : da, "abs(a)");
+      expect_same(abs(a), da.v < 0 ? combine_duals(-da.v, -1, da, 0, db) : da, "abs(a)");
     }
 }
 

@@ -9,9 +9,7 @@
 namespace neurocloth {
 namespace {
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 // Two wind modules, so that the second needs its index in text.
 ParameterNames two_winds() {

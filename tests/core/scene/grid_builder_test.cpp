@@ -3,16 +3,12 @@
 #include <gtest/gtest.h>
 
 #include "core/network/cloth_network.h"
+#include "support/test_support.h"
 
 namespace neurocloth {
 namespace {
 
-int count(const ClothTopology& t, SpringFamily f) {
-  int n = 0;
-  for (const auto& s : t.springs)
-    n += s.family == f;
-  return n;
-}
+using test::count;
 
 TEST(GridBuilder, SpringCountsPerFamily) {
   GridSpec g;

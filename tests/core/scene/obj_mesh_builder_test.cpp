@@ -21,6 +21,7 @@
 #include "core/scene/mesh_node_order.h"
 #include "core/scene/obj_mesh_writer.h"
 #include "core/scene/scene.h"
+#include "support/test_support.h"
 
 namespace neurocloth {
 namespace {
@@ -55,12 +56,7 @@ std::set<Edge> springs_of(const ClothTopology& t, SpringFamily family) {
   return s;
 }
 
-int count(const ClothTopology& t, SpringFamily family) {
-  int n = 0;
-  for (const auto& s : t.springs)
-    n += s.family == family;
-  return n;
-}
+using test::count;
 
 ClothTopology build(const std::string& path, double scale = 1.0,
                     const Vec3& translate = Vec3::Zero(), bool bend = true) {

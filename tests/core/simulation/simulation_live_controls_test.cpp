@@ -135,9 +135,7 @@ TEST(SimulationLiveControls, ModulesWithoutParametersSayNo) {
 // --- The run-time guard (docs/stability.md): LiveScene runs with
 // substep_above_cap and says, in one line, when the step is not what was asked.
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 // The oracle for every case below: the same change in a batch run (no guard) diverges.
 RunStatus batch_after(Scene scene, void (*change)(Simulation&), double seconds) {

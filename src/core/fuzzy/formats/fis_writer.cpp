@@ -10,13 +10,13 @@ namespace {
 
 // Every refusal is a system that .fis cannot hold, so that writing it anyway
 // would give a file inferring other numbers.
-[[noreturn]] void refuse(const std::string& what) {
+[[noreturn]] void refuse_fis(const std::string& what) {
   throw std::invalid_argument("write_fis: " + what);
 }
 
 // 17 significant digits identify every double, so reading gives the same bits.
-std::string number(double v) {
-  if (!std::isfinite(v)) refuse(".fis has no spelling for a non-finite number");
+std::string fis_number(double v) {
+  if (!std::isfinite(v)) refuse_fis(".fis has no spelling for a non-finite fis_number");
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
@@ -25,15 +25,15 @@ std::string number(double v) {
 std::string vector(const std::vector<double>& v) {
   std::string s = "[";
   for (std::size_t i = 0; i < v.size(); ++i)
-    s += (i ? " " : "") + number(v[i]);
+    s += (i ? " " : "") + fis_number(v[i]);
   return s + "]";
 }
 
 const std::string& quoted_name(const std::string& s, const char* what) {
-  if (s.empty()) refuse(std::string(what) + " has an empty name");
+  if (s.empty()) refuse_fis(std::string(what) + " has an empty name");
   for (char c : s)
     if (static_cast<unsigned char>(c) < 32 || c == 127 || c == '\'' || c == '"')
-      refuse(std::string(what) + " '" + s + "' holds a quote or a control character");
+      refuse_fis(std::string(what) + " '" + s + "' holds a quote or a control character");
   return s;
 }
 
@@ -42,7 +42,7 @@ const std::string& quoted_name(const std::string& s, const char* what) {
 std::string entry(int term, bool negated, const std::vector<Hedge>& hedges,
                   const std::string& where) {
   if (hedges.size() > 1)
-    refuse(where + " stacks hedges, which .fis cannot hold (Octave codes one hedge per entry)");
+    refuse_fis(where + " stacks hedges, which .fis cannot hold (Octave codes one hedge per entry)");
   std::string s = (negated ? "-" : "") + std::to_string(term + 1);
   if (!hedges.empty()) s += hedges[0] == Hedge::very ? ".20" : ".05";
   return s;
@@ -53,9 +53,9 @@ bool same_methods(const RuleBlock& a, const RuleBlock& b) {
          a.activation == b.activation && a.accumulation == b.accumulation;
 }
 
-class Writer {
+class FisWriter {
  public:
-  explicit Writer(const FuzzySystem& s) : s_(s) {}
+  explicit FisWriter(const FuzzySystem& s) : s_(s) {}
 
   std::string run() {
     check_system();
@@ -92,20 +92,21 @@ class Writer {
   // One type for every output, one set of methods for every rule: a .fis
   // system has a single [System] saying both.
   void check_system() {
-    if (s_.outputs.empty()) refuse("the system has no output");
+    if (s_.outputs.empty()) refuse_fis("the system has no output");
     sugeno_ = s_.outputs.front().method == Defuzzification::weighted_average;
     for (const LinguisticVariable& v : s_.outputs)
       if ((v.method == Defuzzification::weighted_average) != sugeno_)
-        refuse("outputs '" + s_.outputs.front().name + "' and '" + v.name +
-               "' are defuzzified differently (COG and COGS); a .fis system is mamdani or sugeno");
-    if (s_.blocks.empty()) refuse("the system has no rule block");
+        refuse_fis(
+            "outputs '" + s_.outputs.front().name + "' and '" + v.name +
+            "' are defuzzified differently (COG and COGS); a .fis system is mamdani or sugeno");
+    if (s_.blocks.empty()) refuse_fis("the system has no rule block");
     for (const RuleBlock& b : s_.blocks) {
       if (!same_methods(b, s_.blocks.front()))
-        refuse("rule blocks '" + s_.blocks.front().name + "' and '" + b.name +
-               "' use different AND/OR/ACT/ACCU methods; .fis has one set per system");
+        refuse_fis("rule blocks '" + s_.blocks.front().name + "' and '" + b.name +
+                   "' use different AND/OR/ACT/ACCU methods; .fis has one set per system");
       rule_count_ += b.rules.size();
     }
-    if (rule_count_ == 0) refuse("the system has no rules");
+    if (rule_count_ == 0) refuse_fis("the system has no rules");
   }
 
   void variable(const char* kind, std::size_t i, const LinguisticVariable& v, bool output) {
@@ -114,12 +115,12 @@ class Writer {
     out_ += "Range=" + vector({v.min, v.max}) + "\n";
     out_ += "NumMFs=" + std::to_string(v.terms.size()) + "\n";
     if (output && !std::isnan(v.default_value))
-      refuse("output '" + v.name + "' has DEFAULT " + number(v.default_value) +
-             "; .fis has no default (MATLAB takes the middle of the range)");
+      refuse_fis("output '" + v.name + "' has DEFAULT " + fis_number(v.default_value) +
+                 "; .fis has no default (MATLAB takes the middle of the range)");
     for (std::size_t k = 0; k < v.terms.size(); ++k) {
       const Term& t = v.terms[k];
       const std::string problem = t.function.validate();
-      if (!problem.empty()) refuse("term '" + t.name + "' of '" + v.name + "': " + problem);
+      if (!problem.empty()) refuse_fis("term '" + t.name + "' of '" + v.name + "': " + problem);
       out_ += "MF" + std::to_string(k + 1) + "='" + quoted_name(t.name, "a term") +
               "':" + membership(t, v, output) + "\n";
     }
@@ -141,11 +142,11 @@ class Writer {
         return "'sigmf'," + vector(p);
       case Shape::singleton:
         if (!(output && sugeno_))
-          refuse(where + " is a singleton, which .fis has only as a sugeno output (constant)");
+          refuse_fis(where + " is a singleton, which .fis has only as a sugeno output (constant)");
         return "'constant'," + vector(p);
       case Shape::linear: {
         if (p.size() != 1 + s_.inputs.size())
-          refuse(where + " needs 1 + " + std::to_string(s_.inputs.size()) + " coefficients");
+          refuse_fis(where + " needs 1 + " + std::to_string(s_.inputs.size()) + " coefficients");
         std::vector<double> q(p.begin() + 1, p.end());
         q.push_back(p[0]);  // MATLAB: [a1 .. an c], the constant last
         return "'linear'," + vector(q);
@@ -153,7 +154,7 @@ class Writer {
       case Shape::points:
         break;
     }
-    refuse(where + " is a point list, which .fis has no membership function type for");
+    refuse_fis(where + " is a point list, which .fis has no membership function type for");
   }
 
   // "a1 .. an, c1 .. cm (w) : k": the MF index of each variable (0 when not
@@ -170,14 +171,14 @@ class Writer {
     } else {
       clause(c, in, where);
     }
-    if (r.consequents.empty()) refuse(where + " has no consequent");
+    if (r.consequents.empty()) refuse_fis(where + " has no consequent");
     for (const Consequent& k : r.consequents) {
       if (k.variable < 0 || static_cast<std::size_t>(k.variable) >= out.size() || k.term < 0 ||
           static_cast<std::size_t>(k.term) >=
               s_.outputs[static_cast<std::size_t>(k.variable)].terms.size())
-        refuse(where + " sets an output or term that does not exist");
+        refuse_fis(where + " sets an output or term that does not exist");
       std::string& slot = out[static_cast<std::size_t>(k.variable)];
-      if (slot != "0") refuse(where + " sets one output twice, which .fis cannot hold");
+      if (slot != "0") refuse_fis(where + " sets one output twice, which .fis cannot hold");
       slot = entry(k.term, k.negated, k.hedges, where);
     }
     std::string line;
@@ -186,7 +187,7 @@ class Writer {
     line += ",";
     for (const std::string& o : out)
       line += " " + o;
-    out_ += line + " (" + number(r.weight) + ") : " + std::to_string(connection) + "\n";
+    out_ += line + " (" + fis_number(r.weight) + ") : " + std::to_string(connection) + "\n";
   }
 
   // A term, or NOT of a term: one entry per input, at most once each.
@@ -199,14 +200,14 @@ class Writer {
       negated = true;
     }
     if (t->kind != Condition::Kind::term)
-      refuse(where + " nests AND, OR or NOT; .fis rules are one AND or one OR of terms");
+      refuse_fis(where + " nests AND, OR or NOT; .fis rules are one AND or one OR of terms");
 
     if (t->variable < 0 || static_cast<std::size_t>(t->variable) >= in.size() || t->term < 0 ||
         static_cast<std::size_t>(t->term) >=
             s_.inputs[static_cast<std::size_t>(t->variable)].terms.size())
-      refuse(where + " tests an input or term that does not exist");
+      refuse_fis(where + " tests an input or term that does not exist");
     std::string& slot = in[static_cast<std::size_t>(t->variable)];
-    if (slot != "0") refuse(where + " tests one input twice, which .fis cannot hold");
+    if (slot != "0") refuse_fis(where + " tests one input twice, which .fis cannot hold");
     slot = entry(t->term, negated != t->negated, t->hedges, where);
   }
 
@@ -219,7 +220,7 @@ class Writer {
 }  // namespace
 
 std::string write_fis(const FuzzySystem& system) {
-  return Writer(system).run();
+  return FisWriter(system).run();
 }
 
 }  // namespace neurocloth::fuzzy

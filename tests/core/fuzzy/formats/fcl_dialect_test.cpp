@@ -22,12 +22,9 @@ namespace neurocloth::fuzzy {
 namespace {
 namespace fs = std::filesystem;
 
-std::string text_of(const std::string& name) {
-  return test::rule_file_text(name);
-}
-using test::line_of;
+using neurocloth::test::line_of;
 
-struct Refusal {
+struct DialectRefusal {
   const char* name;
   const char* file;
   std::vector<std::pair<std::string, std::string>> edits;  // replace first with second
@@ -36,8 +33,8 @@ struct Refusal {
   const char* message;
 };
 
-std::string edited(const Refusal& r) {
-  std::string text = text_of(r.file);
+std::string dialect_edited(const DialectRefusal& r) {
+  std::string text = neurocloth::test::rule_file_text(r.file);
   for (const auto& [from, to] : r.edits) {
     const auto pos = text.find(from);
     EXPECT_NE(pos, std::string::npos) << r.name << ": no '" << from << "'";
@@ -46,11 +43,11 @@ std::string edited(const Refusal& r) {
   return text;
 }
 
-class FclDialectRefusal : public ::testing::TestWithParam<Refusal> {};
+class FclDialectRefusal : public ::testing::TestWithParam<DialectRefusal> {};
 
 TEST_P(FclDialectRefusal, NamesFileLineFieldAndWhatIsUnsupported) {
-  const Refusal& r = GetParam();
-  const std::string text = edited(r);
+  const DialectRefusal& r = GetParam();
+  const std::string text = dialect_edited(r);
   try {
     parse_fcl(text, "dialect.fcl");
     FAIL() << r.name << ": read without error";
@@ -65,7 +62,7 @@ TEST_P(FclDialectRefusal, NamesFileLineFieldAndWhatIsUnsupported) {
 const char* const kLite = "fuzzylite_drape.fcl";
 const char* const kJfl = "jfuzzylogic_drape.fcl";
 
-const Refusal kRefusals[] = {
+const DialectRefusal kRefusals[] = {
     {"NormWeDoNotHave",
      kLite,
      {{"AND : AlgebraicProduct;", "AND : EPROD;"}},
@@ -164,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(Dialects, FclDialectRefusal, ::testing::ValuesIn(kRefus
 
 // fuzzylite's parameter orders become ours; its class names and "nan" read.
 TEST(FclDialect, FuzzyliteTermsReadInOurParameterOrder) {
-  const FuzzySystem s = parse_fcl(text_of(kLite), kLite);
+  const FuzzySystem s = parse_fcl(neurocloth::test::rule_file_text(kLite), kLite);
   const LinguisticVariable& stretch = s.inputs[1];
   EXPECT_EQ(stretch.terms[1].function.shape, Shape::bell);
   EXPECT_EQ(stretch.terms[1].function.params,
@@ -184,7 +181,7 @@ TEST(FclDialect, FuzzyliteTermsReadInOurParameterOrder) {
 // The same COGS output without ACCU in an IEC file (rules end with ';') keeps
 // the standard's MAX: only a fuzzylite file says "no aggregation" that way.
 TEST(FclDialect, MissingAccuMeansSumOnlyInAFuzzyliteFile) {
-  std::string text = text_of("fuzzylite_drape.standard.fcl");
+  std::string text = neurocloth::test::rule_file_text("fuzzylite_drape.standard.fcl");
   const auto at = text.find("  ACCU : SUM;\n  RULE 1 : IF weight IS heavy");
   ASSERT_NE(at, std::string::npos);
   text.erase(at, std::string("  ACCU : SUM;\n").size());

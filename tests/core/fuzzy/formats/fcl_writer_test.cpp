@@ -43,7 +43,8 @@ Condition no(Condition c) {
   return node(Kind::negation, {std::move(c)});
 }
 
-Rule rule(std::string label, Condition c, std::vector<Consequent> then, double weight = 1.0) {
+Rule labelled_rule(std::string label, Condition c, std::vector<Consequent> then,
+                   double weight = 1.0) {
   Rule r;
   r.label = std::move(label);
   r.condition = std::move(c);
@@ -100,20 +101,21 @@ FuzzySystem rich_system() {
   main.activation = Activation::product;
   main.accumulation = Accumulation::sum;
   main.rules = {
-      rule("1", is(0, 2, {Hedge::very, Hedge::somewhat}, true), {{0, 0}}, 0.8),
-      rule("2", all({any({is(0, 0), is(1, 1, {Hedge::somewhat}, true)}), no(is(0, 1))}),
-           {{0, 0}, {1, 1}}),
-      rule("3", any({all({is(0, 0), is(1, 2)}), is(0, 2)}), {{0, 1}}, 0.1),
-      rule("4", all({all({is(0, 3), is(0, 4)}), is(0, 5)}), {{1, 0}}, 0.0),
-      rule("5", any({is(0, 6), any({is(1, 0), is(1, 2, {Hedge::very})})}), {{2, 0}}, 1e-17),
-      rule("six", no(no(is(1, 1))), {{0, 1}}),
-      rule("007", no(all({is(0, 0), any({is(1, 0), is(1, 1)})})), {{2, 0}, {0, 0}}),
+      labelled_rule("1", is(0, 2, {Hedge::very, Hedge::somewhat}, true), {{0, 0}}, 0.8),
+      labelled_rule("2", all({any({is(0, 0), is(1, 1, {Hedge::somewhat}, true)}), no(is(0, 1))}),
+                    {{0, 0}, {1, 1}}),
+      labelled_rule("3", any({all({is(0, 0), is(1, 2)}), is(0, 2)}), {{0, 1}}, 0.1),
+      labelled_rule("4", all({all({is(0, 3), is(0, 4)}), is(0, 5)}), {{1, 0}}, 0.0),
+      labelled_rule("5", any({is(0, 6), any({is(1, 0), is(1, 2, {Hedge::very})})}), {{2, 0}},
+                    1e-17),
+      labelled_rule("six", no(no(is(1, 1))), {{0, 1}}),
+      labelled_rule("007", no(all({is(0, 0), any({is(1, 0), is(1, 1)})})), {{2, 0}, {0, 0}}),
   };
   RuleBlock spare;  // empty: allowed
   spare.name = "spare";
   RuleBlock unnamed;
   unnamed.or_method = OrMethod::probabilistic_sum;
-  unnamed.rules = {rule("1", is(1, 2), {{1, 0}})};
+  unnamed.rules = {labelled_rule("1", is(1, 2), {{1, 0}})};
   s.blocks = {main, spare, unnamed};
   return s;
 }
@@ -241,8 +243,9 @@ TEST(FclWriter, WritesCanonicalText) {
   RuleBlock b;
   b.name = "r";
   b.and_method = AndMethod::product;
-  b.rules = {rule("1", all({is(0, 0, {Hedge::very}), no(is(0, 1))}), {{0, 0}, {1, 0}}, 0.5),
-             rule("", is(0, 1, {}, true), {{0, 1}})};
+  b.rules = {
+      labelled_rule("1", all({is(0, 0, {Hedge::very}), no(is(0, 1))}), {{0, 0}, {1, 0}}, 0.5),
+      labelled_rule("", is(0, 1, {}, true), {{0, 1}})};
   s.blocks = {b};
   EXPECT_EQ(write_fcl(s),
             "FUNCTION_BLOCK tiny\n"

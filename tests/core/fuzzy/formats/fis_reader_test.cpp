@@ -22,13 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 using Kind = Condition::Kind;
 
-std::string text_of(const std::string& name) {
-  return test::rule_file_text(name);
-}
-using test::line_of;
+using neurocloth::test::line_of;
 
 TEST(FisReader, ReadsMatlabFieldsIntoTheSystem) {
-  const FuzzySystem s = parse_fis(text_of("matlab_drape.fis"), "m.fis");
+  const FuzzySystem s = parse_fis(neurocloth::test::rule_file_text("matlab_drape.fis"), "m.fis");
   EXPECT_EQ(s.name, "drape");
   ASSERT_EQ(s.inputs.size(), 2u);
   EXPECT_EQ(s.inputs[1].name, "stretch");
@@ -48,7 +45,7 @@ TEST(FisReader, ReadsMatlabFieldsIntoTheSystem) {
 }
 
 TEST(FisReader, ReadsOctaveHedgesCommentsAndCrLf) {
-  const FuzzySystem s = parse_fis(text_of("octave_damping.fis"), "o.fis");
+  const FuzzySystem s = parse_fis(neurocloth::test::rule_file_text("octave_damping.fis"), "o.fis");
   EXPECT_EQ(s.outputs[0].method, Defuzzification::weighted_average);
   EXPECT_EQ(s.blocks[0].and_method, AndMethod::product);  // 'algebraic_product'
   EXPECT_EQ(s.blocks[0].accumulation, Accumulation::sum);
@@ -71,7 +68,7 @@ class FisReaderError : public ::testing::TestWithParam<BadFis> {};
 
 TEST_P(FisReaderError, NamesFileLineAndField) {
   const BadFis& b = GetParam();
-  std::string text = text_of("matlab_drape.fis");
+  std::string text = neurocloth::test::rule_file_text("matlab_drape.fis");
   for (const auto& [from, to] : b.edits) {
     const auto pos = text.find(from);
     ASSERT_NE(pos, std::string::npos) << b.name << ": no '" << from << "'";
