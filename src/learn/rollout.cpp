@@ -46,7 +46,7 @@ void Rollout::step_forward(const RolloutModel& m, std::size_t k, const ClothStat
   Tape& t = *tape_;
   t.inputs.time = steps_.start[k];
   const double h = steps_.size[k];
-  // As Simulation::fixed_step_now takes it: forces at the step's start, the
+  // As Simulation::fixed_step takes it: forces at the step's start, the
   // integrator, then each constraint in order on the step's result.
   m.net.net_forces(in, t.inputs, t.forces);
   t.integrator->step(m.net, t.inputs, in, t.forces, h, out);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "core/base/same_bits.h"
 #include "core/io/text_file.h"
 #include "support/reference_error.h"
 #include "support/scene_test_support.h"
@@ -33,10 +34,6 @@ std::string record(const std::string& name, const std::vector<double>& times) {
     w.add_frame(t, awkward_positions(t));
   w.finish();
   return path;
-}
-
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 TEST(MotionRecording, RoundTripsEveryDoubleBitForBit) {

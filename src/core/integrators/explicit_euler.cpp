@@ -1,7 +1,7 @@
 // Forward Euler: position from the old velocity, velocity from the old
 // acceleration. First order and energy-gaining on undamped springs (the factor
 // per step is sqrt(1 + (h omega)^2)); kept as the baseline the others beat.
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 namespace {

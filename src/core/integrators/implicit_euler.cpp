@@ -19,7 +19,7 @@
 #include <limits>
 
 #include "core/integrators/implicit_system.h"
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 namespace {

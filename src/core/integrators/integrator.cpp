@@ -1,6 +1,6 @@
 #include "core/integrators/integrator.h"
 
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 

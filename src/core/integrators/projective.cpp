@@ -29,7 +29,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 #include "core/integrators/spring_laplacian.h"
 #include "core/network/reciprocal_sqrt.h"
 #include "core/network/spring_chunks.h"

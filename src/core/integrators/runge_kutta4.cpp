@@ -1,6 +1,6 @@
 // Classical fourth-order Runge-Kutta on (p, v). Four force evaluations a step
 // buy fourth-order accuracy and a larger stability interval (h omega <= 2.78).
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 namespace {

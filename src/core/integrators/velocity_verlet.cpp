@@ -1,7 +1,7 @@
 // Velocity Verlet (kick-drift-kick). Second order and symplectic for forces that
 // depend on position only; with viscosity the second kick uses the half-step
 // velocity, which keeps it explicit at the price of exactness in the damping.
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 namespace {

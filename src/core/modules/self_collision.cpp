@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,6 +55,13 @@ class SelfCollision final : public ConstraintModule {
     bool detected = false;
     std::size_t bytes() const {
       return hash.bytes() + pairs.capacity() * sizeof(Pair) + ref.allocated_bytes();
+    }
+    // The hash is rebuilt at every detection: scratch, not compared.
+    bool same_bits(const Candidates& o) const {
+      return detected == o.detected && neurocloth::same_bits(ref, o.ref) &&
+             pairs.size() == o.pairs.size() &&
+             (pairs.empty() ||
+              std::memcmp(pairs.data(), o.pairs.data(), pairs.size() * sizeof(Pair)) == 0);
     }
   };
 

@@ -128,6 +128,12 @@ class StrainLimit final : public ConstraintModule {
              (free_mask.size() + move_a.size() + move_b.size()) * sizeof(double) +
              start.allocated_bytes();
     }
+    // `start` is rewritten at every step before it is read: scratch, not compared.
+    bool same_bits(const Plan& o) const {
+      return unconverged == o.unconverged && neurocloth::same_bits(free_mask, o.free_mask) &&
+             neurocloth::same_bits(depth, o.depth) && neurocloth::same_bits(order, o.order) &&
+             neurocloth::same_bits(move_a, o.move_a) && neurocloth::same_bits(move_b, o.move_b);
+    }
   };
 
   // Distance in springs from every node to the nearest pin (breadth first),

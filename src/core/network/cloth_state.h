@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/base/node_arrays.h"
+#include "core/base/same_bits.h"
 #include "core/base/vec3.h"
 
 namespace neurocloth {
@@ -66,5 +67,13 @@ class NodeVectors {
   }
   Vec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };
+
+inline bool same_bits(const ClothState& a, const ClothState& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) &&
+         same_bits(a.vx, b.vx) && same_bits(a.vy, b.vy) && same_bits(a.vz, b.vz);
+}
+inline bool same_bits(const NodeVectors& a, const NodeVectors& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z);
+}
 
 }  // namespace neurocloth

@@ -36,6 +36,9 @@ class ModuleState {
   virtual ~ModuleState() = default;
   virtual std::unique_ptr<ModuleState> clone() const = 0;
   virtual std::size_t bytes() const = 0;
+  // True when `other` keeps the same bits between steps (scratch a step
+  // rewrites before reading is not compared): a restored run must match.
+  virtual bool same_bits(const ModuleState& other) const = 0;
 };
 
 // A ModuleState that is one copyable value.
@@ -47,6 +50,10 @@ class ModuleStateOf final : public ModuleState {
     return std::make_unique<ModuleStateOf>(*this);
   }
   std::size_t bytes() const override { return value.bytes(); }
+  bool same_bits(const ModuleState& other) const override {
+    const auto* o = dynamic_cast<const ModuleStateOf*>(&other);
+    return o != nullptr && value.same_bits(o->value);
+  }
 };
 
 // The value inside a state a module made with ModuleStateOf<T>.

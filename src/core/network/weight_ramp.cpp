@@ -65,4 +65,16 @@ bool WeightRamp::advance(ClothNetwork& net) {
   return true;
 }
 
+bool WeightRamp::Path::same_bits(const Path& o) const {
+  using neurocloth::same_bits;
+  return same_bits(from_, o.from_) && same_bits(to_, o.to_) && same_bits(ratio_of_, o.ratio_of_) &&
+         same_bits(ratios_, o.ratios_);
+}
+
+bool WeightRamp::same_bits(const WeightRamp& o) const {
+  return step_ == o.step_ && steps_ == o.steps_ && stiffness_.same_bits(o.stiffness_) &&
+         damping_.same_bits(o.damping_) && inverse_mass_.same_bits(o.inverse_mass_) &&
+         friction_.same_bits(o.friction_);
+}
+
 }  // namespace neurocloth

@@ -20,6 +20,7 @@ class WeightRamp {
   bool active() const { return step_ < steps_; }
   // Writes the next step's weights into `net`; false when there was nothing to do.
   bool advance(ClothNetwork& net);
+  bool same_bits(const WeightRamp& o) const;
 
   // One weight array's path. Geometric where both ends are positive, linear
   // otherwise. A material change scales whole families of weights by one
@@ -29,6 +30,7 @@ class WeightRamp {
    public:
     void start(const std::vector<double>& from, const std::vector<double>& to, bool geometric);
     void write(double s, std::vector<double>& out);  // s in [0, 1]; out = to at s = 1
+    bool same_bits(const Path& o) const;             // factors_ is scratch, rewritten by write()
    private:
     std::vector<double> from_, to_;
     std::vector<std::int32_t> ratio_of_;  // per weight: its ratio's index, or -1 (linear)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/base/same_bits.h"
+
 namespace neurocloth {
 
 DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& s,
@@ -49,6 +51,15 @@ std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& 
     strikes_ = 0;
   }
   return {};
+}
+
+bool DivergenceMonitor::same_bits(const DivergenceMonitor& o) const {
+  using neurocloth::same_bits;
+  const DivergenceSettings &a = settings_, &b = o.settings_;
+  return a.check_interval == b.check_interval && same_bits(a.runaway_factor, b.runaway_factor) &&
+         a.runaway_checks == b.runaway_checks && same_bits(a.hard_factor, b.hard_factor) &&
+         same_bits(size_, o.size_) && same_bits(base_budget_, o.base_budget_) &&
+         same_bits(gravity_start_, o.gravity_start_) && strikes_ == o.strikes_;
 }
 
 }  // namespace neurocloth

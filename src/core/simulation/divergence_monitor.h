@@ -16,17 +16,19 @@ namespace neurocloth {
 
 class DivergenceMonitor {
  public:
+  DivergenceMonitor() = default;  // a budget of nothing, until assigned a real one
   DivergenceMonitor(const ClothNetwork& net, const ClothState& initial,
                     const DivergenceSettings& settings);
   // Empty when healthy; otherwise why the run diverged.
   std::string check(const ClothNetwork& net, const ClothState& state, const ForceInputs& inputs);
   bool striking() const { return strikes_ > 0; }
+  bool same_bits(const DivergenceMonitor& o) const;
 
  private:
   DivergenceSettings settings_;
-  double size_;           // cloth bounding-box diagonal at the start, m
-  double base_budget_;    // J
-  double gravity_start_;  // gravity potential at the start, J
+  double size_ = 0;           // cloth bounding-box diagonal at the start, m
+  double base_budget_ = 0;    // J
+  double gravity_start_ = 0;  // gravity potential at the start, J
   int strikes_ = 0;
 };
 

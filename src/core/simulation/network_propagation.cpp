@@ -3,7 +3,7 @@
 // neuron integrates the *new* velocity. That is semi-implicit (symplectic) Euler.
 #include <limits>
 
-#include "core/integrators/integrators.h"
+#include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
 namespace {

@@ -5,13 +5,12 @@
 // buffer which becomes current only when the step is accepted, so a rejection
 // costs nothing to undo.
 //
-// A simulation is a model and a state (MuJoCo's mjModel / mjData). The model —
-// the network, the constraint modules, the solver settings — is read by a step
-// and never written by it; it changes only between steps, through the calls
-// below. The state — the neurons' outputs, the external forces and the clock
-// (ForceInputs), what each constraint keeps between steps, the checkpoint, the
-// ramp in progress — is everything a step writes. The rest is cache (forces at
-// the current state, the step cap), dropped by one function, invalidate().
+// A simulation is a model, a state and a step context (MuJoCo's mjModel /
+// mjData, Box2D's b2StepContext). The model — the network, the constraint
+// modules, the solver settings — is read by a step and changes only between
+// steps, through the calls below. The state (SimulationState) is everything a
+// step writes; run_state() and restore() save and put it back. The context
+// (StepContext) holds threads, clocks, and caches rebuilt from the other two.
 // Every member is a value: a copy of a running simulation continues exactly as
 // the original would, bit for bit, and stepping one leaves the other alone.
 #include <array>
@@ -27,12 +26,11 @@
 #include "core/network/parameter_id.h"
 #include "core/network/weight_ramp.h"
 #include "core/simulation/divergence_monitor.h"
+#include "core/simulation/simulation_state.h"
 #include "core/simulation/solver_settings.h"
+#include "core/simulation/step_context.h"
 
 namespace neurocloth {
-
-enum class RunStatus { ok, diverged };
-const char* to_string(RunStatus s);
 
 // What one active module has cost so far.
 struct ModuleReport {
@@ -91,12 +89,24 @@ class Simulation {
   bool set_module_parameter(std::size_t index, const ParameterId& id, double value);
   void set_external_force(std::size_t node, const Vec3& force);
   // External forces and the clock the next step's force evaluations read.
-  const ForceInputs& force_inputs() const { return inputs_; }
+  const ForceInputs& force_inputs() const { return run_.inputs; }
   // Moves every spring's and node's weights to `material`'s over `steps`
   // accepted steps (a live change of a linguistic input: no jolt).
   void ramp_to_material(const Material& material, int steps = 64);
-  bool ramping() const { return ramp_.active(); }
+  bool ramping() const { return run_.ramp.active(); }
+  // A new cloth state at the current time; it becomes the checkpoint too.
   void set_state(const ClothState& state);
+  // Everything a step writes, to save (copy it), compare (same_bits) or restore.
+  const SimulationState& run_state() const { return run_; }
+  // Puts a saved state back: the run continues as it did from that point, bit
+  // for bit, as long as the model is unchanged since (restore does not touch
+  // the network, the constraints or the settings; a ramp in progress rewrites
+  // the weights at its next step). The integrator's own history (the implicit
+  // step's preconditioner, projective's convergence rate) stays; it changes
+  // bits only within the solver tolerance. Refuses, with std::invalid_argument
+  // naming what differs, a state of another node count or module count.
+  // Drops the cached forces and step cap.
+  void restore(const SimulationState& state);
   // Between steps (a live control): a new dt, integrator or adaptive switch. The
   // integrator is rebuilt (its scratch and any cache belong to the old settings)
   // and cached forces and the step cap are dropped; state and time carry on.
@@ -111,17 +121,17 @@ class Simulation {
   // fall) would count as runaway once gravity changes.
   void rebase_divergence_check();
 
-  const ClothState& state() const { return states_[front_]; }
+  const ClothState& state() const { return run_.cloth(); }
   const SolverSettings& settings() const { return settings_; }
-  RunStatus status() const { return status_; }
-  const std::string& divergence_reason() const { return reason_; }
-  double time() const { return time_; }
-  long steps() const { return steps_; }
-  long rejected_steps() const { return rejected_; }
-  long force_evaluations() const { return force_evaluations_; }
-  long cg_iterations() const { return cg_iterations_; }
+  RunStatus status() const { return run_.status; }
+  const std::string& divergence_reason() const { return run_.reason; }
+  double time() const { return run_.time; }
+  long steps() const { return run_.counters.steps; }
+  long rejected_steps() const { return run_.counters.rejected; }
+  long force_evaluations() const { return run_.counters.force_evaluations; }
+  long cg_iterations() const { return run_.counters.cg_iterations; }
   // Springs with no length (skipped by the force evaluation) at the last check.
-  int degenerate_springs() const { return degenerate_; }
+  int degenerate_springs() const { return run_.counters.degenerate_springs; }
   // The adaptive cap on t_c (safety * stability bound, at most dt); with
   // substep_above_cap, the largest fixed (sub)step too. Recomputed after any
   // weight change (mutable_network, a ramp step, new solver settings).
@@ -144,73 +154,50 @@ class Simulation {
   }
 
  private:
+  using Stale = StepContext::Stale;
+
+  // The stages of a step, in the order advance() calls them.
   // One fixed frame of h: a single step, or equal substeps under the cap when
   // guarded. False when the step budget ran out before the frame's end.
   bool fixed_frame(double h);
-  void fixed_step(double h);  // advances the ramp, then steps
-  void fixed_step_now(double h);
-  // The modules' hooks around one integrator step from *front_ (at time_) over h.
-  void begin_step();
-  void constrain(const StepStart& before, ClothState& after, double h);
+  // One fixed step of h from the current cloth (never rejected).
+  void fixed_step(double h);
   // False when the step budget ran out before frame_end.
   bool adaptive_frame(double frame_end);
-  void ensure_front_forces();
-  // The step's result is in the back buffer (swap it in) or already in front.
-  void accept(double h, bool result_in_back = true);
-  void after_accept(bool force_check);
-  void run_check();
+  // One trial of Table 1 over at most t_c; true when it was accepted.
+  bool adaptive_trial(StepController& tc, double frame_end);
+  bool take_from_budget();
   bool advance_ramp();
-  // What a change leaves stale: `weights` (the network's weights or the
-  // integrator) also drops the step cap; `forces` (the state, an external force,
-  // a gust's time) only the forces cached at the current state.
-  enum class Stale { forces, weights };
-  void invalidate(Stale what);
-  ClothState& front() { return states_[front_]; }
-  ClothState& back() { return states_[1 - front_]; }
+  void begin_step();
+  void start_forces();
+  StepStart keep_step_start(bool in_place);
+  void integrate(const ClothState& in, double h, ClothState& out);
+  // The modules' hooks after one integrator step from `before` (at time()) over h.
+  void constrain(const StepStart& before, ClothState& after, double h);
+  double landing_max_force(const ClothState& landed);
+  bool force_grows(double landed_max_force) const;
+  // The step's result is in the back buffer (swap it in) or already current.
+  void accept(double h, bool result_in_back = true);
+  void accept_trial(StepController& tc, double h, double landed_max_force, double frame_end);
+  void reject_trial(StepController& tc);
+  void check_if_due(bool force_check);
+  void full_check();
+  void invalidate(Stale what) { ctx_.drop(what); }
 
   // The model: read by a step, changed only between steps.
   ClothNetwork net_;
   std::vector<std::shared_ptr<const ConstraintModule>> constraints_;
   SolverSettings settings_;
   double force_scale_ = 0;  // largest node weight, for the absolute growth tolerance
+  // Made from the settings: its scratch, and a history that only speeds it up.
+  Cloned<Integrator> integrator_;
 
-  // The state: everything a step writes.
-  std::array<ClothState, 2> states_;  // the current state and the back buffer
-  int front_ = 0;
-  ForceInputs inputs_;
-  std::vector<Cloned<ModuleState>> module_states_;  // one per constraint (null: keeps nothing)
-  ClothState checkpoint_;
-  DivergenceMonitor monitor_;
-  WeightRamp ramp_;
-  RunStatus status_ = RunStatus::ok;
-  std::string reason_;
-  double time_ = 0, checkpoint_time_ = 0;
-  long steps_ = 0, checkpoint_steps_ = 0, rejected_ = 0;
-  long force_evaluations_ = 0, cg_iterations_ = 0;
-  int steps_since_check_ = 0;
-  int degenerate_ = 0;
-  long budget_left_ = 0;  // trial steps this advance() may still take
+  SimulationState run_;  // everything a step writes
+  StepContext ctx_;      // threads, clocks, caches and scratch
+
+  // The outcome of the last advance(), and callbacks: no step result depends on them.
   bool budget_exhausted_ = false;
   bool interrupted_ = false;
-
-  // Caches and scratch, derived from the two above (invalidate()).
-  Cloned<Integrator> integrator_;
-  // Who shares the sweeps (settings_.threads; a copy gets its own team).
-  // inputs_.threads points at it only inside advance(), so the inputs handed
-  // out never lend the team to another caller.
-  OwnedStepThreads threads_;
-  // Where the nodes were when a fixed step taken in place began: what the
-  // constraints read as the start (sized only when there are constraints).
-  NodeVectors start_;
-  std::array<NodeVectors, 2> forces_;  // forces_[force_front_] = net_forces(state()) when valid
-  int force_front_ = 0;
-  bool front_forces_valid_ = false;
-  double cap_ = -1;                        // cached step cap; < 0 means stale
-  double former_force_ = -1;               // max |sum f| at the current state; < 0 means unknown
-  std::vector<double> bound_k_, bound_d_;  // scratch of the stability bound
-
-  // Diagnostics and callbacks: no step result depends on them.
-  std::vector<ModuleClock> constraint_clocks_;
   std::function<void(const StepEvent&)> observer_;
   std::function<bool(const Simulation&)> interrupt_;
 };

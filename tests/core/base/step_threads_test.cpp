@@ -7,25 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include "core/io/asset_paths.h"
+#include "core/network/cloth_state.h"
 #include "core/scene/scene.h"
 
 namespace neurocloth {
 namespace {
-
-// Bitwise: == would call -0 and 0 equal and NaN unequal to itself.
-bool same_bits(const NodeArray& a, const NodeArray& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
-
-bool same_bits(const ClothState& a, const ClothState& b) {
-  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) &&
-         same_bits(a.vx, b.vx) && same_bits(a.vy, b.vy) && same_bits(a.vz, b.vz);
-}
 
 Simulation run(Scene scene, IntegratorKind integrator, int threads, double seconds) {
   scene.solver.integrator = integrator;

@@ -1,5 +1,6 @@
 #pragma once
-// Factories of the concrete integrators; each lives in its own file.
+// The factory of each concrete integrator (each lives in its own file), what
+// make_integrator() in integrator.cpp chooses among by IntegratorKind.
 #include <memory>
 
 #include "core/integrators/integrator.h"
