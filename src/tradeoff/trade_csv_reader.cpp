@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 
+#include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
 #include "core/io/physical_limits.h"
 #include "core/io/text_file.h"
@@ -56,12 +57,9 @@ class Reader {
   double real(const Field& f, const std::string& field, int line, double min, bool above,
               bool nan_ok = false) const {
     if (nan_ok && (f.text.empty() || f.text == "none" || f.text == "nan")) return std::nan("");
-    errno = 0;
-    char* end = nullptr;
-    const double v = std::strtod(f.text.c_str(), &end);
-    if (f.text.empty() || end != f.text.c_str() + f.text.size() || errno == ERANGE ||
-        !std::isfinite(v))
-      fail(field, "not a finite number: '" + f.text + "'", line, f.column);
+    const FieldNumber n = finite_number(f.text);
+    if (!n.refusal.empty()) fail(field, n.refusal, line, f.column);
+    const double v = n.value;
     if (above ? !(v > min) : !(v >= min))
       fail(field,
            std::string("must be ") + (above ? "> " : ">= ") + show_number(min) + ", got " + f.text,
