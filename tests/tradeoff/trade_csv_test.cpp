@@ -14,6 +14,7 @@
 #include "core/io/asset_paths.h"
 #include "core/io/input_error.h"
 #include "support/hand_made_trade.h"
+#include "support/scratch_dir.h"
 #include "tradeoff/trade_csv.h"
 
 namespace neurocloth {
@@ -433,9 +434,7 @@ TEST(TradeoffCsv, AFileWithoutTheIterationsColumnReads) {
 // A trade holds at the grid it was measured on: read for another size (or from
 // a file that does not say), it is refused, naming the file and the field.
 TEST(TradeoffCsv, ASizedTradeRefusesAnotherSize) {
-  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/trade_csv";
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/at32.csv";
+  const std::string path = test::scratch_path("at32.csv");
   std::ofstream(path, std::ios::trunc) << trade_csv(csv_table());
   EXPECT_EQ(read_sized_trade(path, 32).grid_rows, 32);
   try {
@@ -449,7 +448,7 @@ TEST(TradeoffCsv, ASizedTradeRefusesAnotherSize) {
   }
   TradeTable unsized = csv_table();
   unsized.grid_rows = unsized.grid_cols = 0;
-  const std::string old = dir + "/unsized.csv";
+  const std::string old = test::scratch_path("unsized.csv");
   std::ofstream(old, std::ios::trunc) << trade_csv(unsized);
   EXPECT_EQ(read_trade_csv(old).grid_rows, 0);  // still a trade at the scene's own size
   try {
