@@ -1,14 +1,12 @@
 #include "learn/marker_csv.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string_view>
 #include <vector>
 
+#include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
-#include "learn/csv_fields.h"
 
 namespace neurocloth {
 namespace {
@@ -96,15 +94,9 @@ class MarkerReader {
 
  private:
   double number(std::string_view field, const char* name) const {
-    const std::string s(field);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size())
-      throw InputError(path_, name, "not a number: " + shown(field), line_);
-    // strtod reads "nan" and "inf", and overflows to infinity (ERANGE).
-    if (!std::isfinite(v)) throw InputError(path_, name, "NaN or infinite: " + shown(field), line_);
-    return v;
+    const FieldNumber n = finite_number(field);
+    if (!n.refusal.empty()) throw InputError(path_, name, n.refusal, line_);
+    return n.value;
   }
 
   double coordinate(std::string_view field, const char* name) const {

@@ -1,14 +1,11 @@
 #include "learn/rule_examples.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <sstream>
 #include <string_view>
 
+#include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
-#include "learn/csv_fields.h"
 
 namespace neurocloth {
 namespace {
@@ -111,16 +108,9 @@ class ExampleReader {
 
  private:
   double number(std::string_view field, const Column& col, int line, int column) const {
-    const std::string s(field);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size())
-      throw InputError(path_, col.name, "not a number: " + shown(field), line, column);
-    // strtod reads "nan" and "inf", and overflows to infinity.
-    if (!std::isfinite(v))
-      throw InputError(path_, col.name, "NaN or infinite: " + shown(field), line, column);
-    return v;
+    const FieldNumber n = finite_number(field);
+    if (!n.refusal.empty()) throw InputError(path_, col.name, n.refusal, line, column);
+    return n.value;
   }
 
   const std::string& path_;

@@ -12,17 +12,12 @@
 
 #include "chart/trade_chart.h"
 #include "support/release_chart_caches.h"
+#include "support/scratch_dir.h"
 #include "tradeoff/pareto_front.h"
 
 namespace neurocloth {
 namespace {
 namespace fs = std::filesystem;
-
-std::string scratch_png(const std::string& name) {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "chart_test";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
 
 // A PNG read back: 8-bit channels.
 class Picture {
@@ -90,7 +85,7 @@ TEST(LogLogChart, AxesSpanWholeDecadesAroundThePoints) {
 }
 
 TEST(LogLogChart, WritesAPngOfItsSizeWithEachLineWhereItsDataIs) {
-  const std::string path = scratch_png("two_lines.png");
+  const std::string path = test::scratch_path("two_lines.png");
   fs::remove(path);
   const LogLogChart chart(two_lines());
   chart.write_png(path);
@@ -139,7 +134,7 @@ TEST(LogLogChart, LeavesOutWhatALogScaleCannotShow) {
   spec.series[0].points.push_back({-1, 0.1});
   const LogLogChart chart(spec);
   EXPECT_EQ(chart.y_lo(), -6);  // the zero did not drag the axis to -infinity
-  const std::string path = scratch_png("with_zeros.png");
+  const std::string path = test::scratch_path("with_zeros.png");
   chart.write_png(path);
   EXPECT_TRUE(Picture(path).ok());
 }
@@ -199,7 +194,7 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   }
   EXPECT_EQ(colours.size(), 6u);
 
-  const std::string path = scratch_png("trade.png");
+  const std::string path = test::scratch_path("trade.png");
   write_trade_chart(t, path);
   const Picture pic(path);
   ASSERT_TRUE(pic.ok());

@@ -12,6 +12,7 @@
 #include "core/scene/element_weights.h"
 #include "core/scene/fuzzy_material.h"
 #include "support/release_chart_caches.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth {
 namespace {
@@ -25,9 +26,7 @@ std::string read_text(const fs::path& p) {
 class FittedOutput : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(NEUROCLOTH_TEST_TMP) / "fitted_output" /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
+    dir_ = test::scratch_dir();
     fs::create_directories(dir_ / "in" / "meshes");
     fs::create_directories(dir_ / "out" / "sub");
   }

@@ -6,21 +6,15 @@
 #include <stdexcept>
 
 #include "render/renderer.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(NEUROCLOTH_TEST_TMP) / "png_image_test" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
 TEST(PngImage, WhatIsWrittenReadsBackExactly) {
-  const fs::path dir = fresh_dir("round_trip");
+  const fs::path dir = test::scratch_dir();
   const int w = 37, h = 19;
   std::vector<std::uint8_t> rgba(w * h * 4);
   for (std::size_t i = 0; i < rgba.size(); ++i)
@@ -36,7 +30,7 @@ TEST(PngImage, WhatIsWrittenReadsBackExactly) {
 }
 
 TEST(PngImage, AFailedWriteNamesThePathAndLeavesNothing) {
-  const fs::path dir = fresh_dir("failed");
+  const fs::path dir = test::scratch_dir();
   const std::string missing = (dir / "no_such_folder" / "a.png").string();
   try {
     write_png(missing, std::vector<std::uint8_t>(16, 0), 2, 2);
@@ -50,7 +44,7 @@ TEST(PngImage, AFailedWriteNamesThePathAndLeavesNothing) {
 }
 
 TEST(PngImage, ReadingSomethingElseNamesThePath) {
-  const fs::path dir = fresh_dir("not_png");
+  const fs::path dir = test::scratch_dir();
   const std::string path = (dir / "text.png").string();
   std::ofstream(path) << "not an image";
   int w, h;

@@ -15,6 +15,7 @@
 #include "render/gl_program.h"
 #include "render/snapshot_framing.h"
 #include "support/reference_image.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth {
 namespace {
@@ -297,8 +298,7 @@ TEST(Renderer, AMissingShaderIsNamed) {
 // program when it does not link).
 TEST(Renderer, ABrokenShaderIsNamedWithTheDriversMessage) {
   OsmesaContext context(16, 16);
-  const std::filesystem::path dir = std::filesystem::path(NEUROCLOTH_TEST_TMP) / "broken_shaders";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = test::scratch_dir();
   const auto write = [&](const char* name, const char* text) {
     std::ofstream(dir / name, std::ios::binary | std::ios::trunc) << text;
   };

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/scratch_dir.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
@@ -277,8 +278,7 @@ TEST(LiveScene, PauseAndSingleStep) {
 }
 
 TEST(LiveScene, ABrokenSceneOrRuleBaseLeavesTheRunAsItWas) {
-  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/live_scene_test";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test::scratch_dir().string();
   const std::string broken = dir + "/broken.json";
   std::ofstream(broken) << "{ \"name\": \"broken\", \"cloth\": { \"grid\": 3 } }";
 
@@ -328,8 +328,7 @@ TEST(LiveScene, NewRulesReplaceTheRuleBase) {
 }
 
 TEST(LiveScene, TheRuleBaseIsReadOnceWithTheScene) {
-  const Scene scene =
-      test::fuzzy_scene_without_its_rules(std::string(NEUROCLOTH_TEST_TMP) + "/live_rules_once");
+  const Scene scene = test::fuzzy_scene_without_its_rules(test::scratch_dir().string());
   ASSERT_TRUE(scene.fuzzy_material && scene.fuzzy_material->rules);
   EXPECT_EQ(parameter_ranges(scene).size(),
             all_parameters(ParameterNames{}).size() + scene.fuzzy_material->inputs.size());

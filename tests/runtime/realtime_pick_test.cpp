@@ -8,6 +8,7 @@
 #include <fstream>
 #include <vector>
 
+#include "support/scratch_dir.h"
 #include "support/test_support.h"
 #include "tradeoff/trade_csv.h"
 
@@ -114,12 +115,7 @@ std::string write_trade(const std::string& name, int grid, const std::vector<Tra
   t.reference.change = 1e-3;
   t.reference.stopped_by = "budget";
   t.rows = rows;
-  // A folder of each test's own: ctest runs these tests side by side, and two
-  // writing one file would read each other's trade.
-  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick/" +
-                          ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + name;
+  const std::string path = test::scratch_path(name);
   std::ofstream(path, std::ios::trunc) << trade_csv(t);
   return path;
 }
@@ -191,8 +187,8 @@ TEST(RealtimePick, ErrorsTheReferenceCannotTellApartAreATieWonByTheCheapest) {
 }
 
 TEST(RealtimePick, SaysWhenTheErrorAtThisSizeIsNotMeasuredAndHowToMeasureIt) {
-  const std::string nowhere = std::string(NEUROCLOTH_TEST_TMP) + "/realtime_pick/none.8.csv";
-  std::filesystem::remove(nowhere);
+  // A name in the test's emptied folder: no file is there.
+  const std::string nowhere = test::scratch_path("none.8.csv");
   const SizedTrade trade = find_sized_trade(kDrapeFile, 8, nowhere);
   EXPECT_FALSE(trade.table);
   EXPECT_TRUE(trade.problem.empty()) << trade.problem;

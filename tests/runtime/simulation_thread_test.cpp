@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "support/lockstep.h"
+#include "support/scratch_dir.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
@@ -229,9 +230,7 @@ TEST(SimulationThread, AppliedForceMovesTheNodeUntilReleased) {
 }
 
 TEST(SimulationThread, RefusedCommandsSayWhyAndTheSceneRunsOn) {
-  const std::string dir = std::string(NEUROCLOTH_TEST_TMP) + "/simulation_thread_test";
-  std::filesystem::create_directories(dir);
-  const std::string broken = dir + "/broken_scene.json";
+  const std::string broken = test::scratch_path("broken_scene.json");
   std::ofstream(broken) << "{ \"name\": \"broken\", \"cloth\": ";
 
   SimulationThread sim(test::asset_scene("hanging"), lockstep());

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/process_run.h"
+#include "support/scratch_dir.h"
 
 #include "core/scene/scene.h"
 
@@ -61,9 +62,7 @@ inline void expect_all_finite(const json& v, const std::string& where) {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(NEUROCLOTH_TEST_TMP) / "cli_test" /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
+    dir_ = test::scratch_dir();
     fs::create_directories(out_dir());
   }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Helpers for tests of scene files: a scratch folder per test, and checks that
-// an InputError names the right file, field and line.
+// Helpers for tests of scene files: checks that an InputError names the right
+// file, field and line, against paths in the test's scratch folder.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,24 +11,14 @@
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
 #include "support/scene_builder.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth::test {
 namespace fs = std::filesystem;
 
 // Every error message is checked against a path that only exists in this test's
-// scratch folder, so a message that names some other file cannot pass by accident.
-// One folder per test: ctest runs tests in parallel, and two writing one file race.
-inline fs::path scratch() {
-  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(NEUROCLOTH_TEST_TMP) / "scene_test" / test->test_suite_name() / test->name();
-  fs::create_directories(dir);
-  return dir;
-}
-
-inline std::string scratch_path(const std::string& name) {
-  return (scratch() / name).string();
-}
+// scratch folder (scratch_path), so a message that names some other file cannot
+// pass by accident.
 
 inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

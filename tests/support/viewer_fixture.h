@@ -16,6 +16,7 @@
 
 #include "core/io/asset_paths.h"
 #include "support/process_run.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth::viewer_test {
 namespace fs = std::filesystem;
@@ -38,12 +39,7 @@ inline std::string scene_asset(const std::string& name) {
 // Each test gets its own folder, which is also the working directory of the run.
 class Viewer : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(NEUROCLOTH_TEST_TMP) / "viewer_test" /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::scratch_dir(); }
 
   fs::path path(const std::string& name) const { return dir_ / name; }
 

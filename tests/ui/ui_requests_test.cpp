@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/io/asset_paths.h"
+#include "support/scratch_dir.h"
 #include "support/test_support.h"
 #include "ui/ui_requests.h"
 
@@ -99,8 +100,7 @@ TEST(UiRequests, TheDefaultSceneHasALinguisticMaterial) {
 }
 
 TEST(UiRequests, TheUiSharesTheScenesRuleBase) {
-  const Scene scene =
-      test::fuzzy_scene_without_its_rules(std::string(NEUROCLOTH_TEST_TMP) + "/ui_rules_once");
+  const Scene scene = test::fuzzy_scene_without_its_rules(test::scratch_dir().string());
   SceneInfo info(scene);  // would throw if it read the rule base again
   ASSERT_TRUE(info.fuzzy().has_value());
   EXPECT_EQ(info.fuzzy()->rules(), scene.fuzzy_material->rules);

@@ -81,8 +81,8 @@ double cloth_mass(const Scene& scene);
 // The names a scene's parameter ids index: its rule base's inputs and its modules.
 ParameterNames parameter_names(const Scene& scene);
 
-// Throws InputError (file, field, line) for anything wrong; never returns a
-// half-read scene.
+// Reading (scene_reader.cpp). Throws InputError (file, field, line) for
+// anything wrong; never returns a half-read scene.
 Scene load_scene(const std::string& path);
 // `path` is used for messages and to resolve relative paths (OBJ files).
 Scene parse_scene(const std::string& text, const std::string& path);

@@ -8,17 +8,11 @@
 #include <filesystem>
 #include <limits>
 
+#include "support/scratch_dir.h"
+
 namespace neurocloth {
 namespace {
 namespace fs = std::filesystem;
-
-fs::path scratch() {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "json_writer_test" /
-                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 TEST(JsonWriter, FindsTheFirstNumberThatIsNotFinite) {
   nlohmann::json doc = {{"status", "ok"}, {"energy", {{"kinetic", 1.0}, {"total", 2.0}}}};
@@ -31,7 +25,7 @@ TEST(JsonWriter, FindsTheFirstNumberThatIsNotFinite) {
 }
 
 TEST(JsonWriter, ANonFiniteNumberIsNeverWritten) {
-  const fs::path dir = scratch();
+  const fs::path dir = test::scratch_dir();
   const std::string path = (dir / "result.json").string();
   nlohmann::json doc = {{"time", 1.5}, {"energy", {{"total", std::nan("")}}}};
   try {

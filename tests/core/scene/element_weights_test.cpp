@@ -8,6 +8,7 @@
 #include "core/io/asset_paths.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth {
 namespace {
@@ -18,10 +19,7 @@ namespace fs = std::filesystem;
 class ElementWeightsFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(NEUROCLOTH_TEST_TMP) / "element_weights" /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::scratch_dir();
     scene_ = load_scene(assets_directory() + "/scenes/mesh_square.json");
     doc_ = element_weights_json(scene_.build_network(), scene_.topology);
   }

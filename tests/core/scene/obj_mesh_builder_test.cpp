@@ -21,6 +21,7 @@
 #include "core/scene/mesh_node_order.h"
 #include "core/scene/obj_mesh_writer.h"
 #include "core/scene/scene.h"
+#include "support/scratch_dir.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
@@ -33,17 +34,9 @@ std::string square_obj() {
   return assets_directory() + "/meshes/square.obj";
 }
 
-// This test's own scratch folder: ctest runs tests in parallel.
-fs::path scratch() {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "obj_mesh_builder_test" /
-                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::create_directories(dir);
-  return dir;
-}
-
 // Writes `text` to a file in the scratch folder and returns its path.
 std::string temp_obj(const std::string& name, const std::string& text) {
-  const std::string path = (scratch() / name).string();
+  const std::string path = test::scratch_path(name);
   std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
   return path;
 }
@@ -155,7 +148,7 @@ TEST(ObjMesh, NegativeIndicesCountFromTheEnd) {
 }
 
 TEST(ObjMesh, UnreadableFileNamesThePath) {
-  const std::string path = (scratch() / "no_such_file.obj").string();
+  const std::string path = test::scratch_path("no_such_file.obj");
   fs::remove(path);
   const auto e = build_error(path);
   ASSERT_TRUE(e);
@@ -307,7 +300,7 @@ ClothTopology grid_mesh(int n, const std::vector<std::int32_t>& order = {}) {
   g.rows = g.cols = n;
   g.spacing = 0.05;
   const ClothTopology grid = build_grid(g);
-  const std::string path = (scratch() / "grid.obj").string();
+  const std::string path = test::scratch_path("grid.obj");
   write_obj_mesh(order.empty() ? grid : renumbered(grid, order), path);
   return build(path);
 }

@@ -19,7 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::expect_names;
 using test::parse_error;
-using test::scratch;
 using test::scratch_path;
 using test::write_file;
 

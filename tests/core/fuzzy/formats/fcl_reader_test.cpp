@@ -17,6 +17,7 @@
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
 #include "support/fcl_test_text.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth::fuzzy {
 namespace {
@@ -282,8 +283,7 @@ TEST(FclReader, ReadsTheExampleInTheDocumentation) {
 }
 
 TEST(FclReader, ReadsAFileAndNamesItInErrors) {
-  const fs::path dir = fs::path(NEUROCLOTH_TEST_TMP) / "fcl_reader_test";
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch_dir();
   const std::string good = (dir / "good.fcl").string();
   std::ofstream(good, std::ios::binary) << kBase;
   EXPECT_EQ(read_fcl(good).outputs[1].name, "damping");

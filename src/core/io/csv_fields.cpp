@@ -1,6 +1,8 @@
-#include "learn/csv_fields.h"
+#include "core/io/csv_fields.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "core/io/input_error.h"
@@ -40,6 +42,19 @@ std::string shown(std::string_view s) {
     }
   }
   return out + (s.size() > 40 ? "...'" : "'");
+}
+
+FieldNumber finite_number(std::string_view field) {
+  const std::string s(field);  // strtod needs the terminating NUL
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size()) return {0, "not a number: " + shown(field)};
+  // strtod reads "nan" and "inf", and overflows to infinity (ERANGE).
+  if (!std::isfinite(v)) return {0, "NaN or infinite: " + shown(field)};
+  // A finite result with ERANGE is an underflow: the nearest double (a
+  // denormal, or 0 for 1e-400), kept as any decimal is kept rounded. A
+  // denormal our writers print must read back.
+  return {v, ""};
 }
 
 int walk_csv_lines(const std::string& text, const std::string& path, const std::string& no_header,
