@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/physical_limits.h"
+
 namespace neurocloth {
 namespace {
 
@@ -23,12 +25,6 @@ struct Stop {
 };
 // The objective itself threw: passed on once the run is unwound.
 struct ObjectiveThrew {};
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // What both methods share: every evaluation goes through evaluate() (the best
 // point, the budgets, NaN), every accepted point through accept() (history,
@@ -54,7 +50,7 @@ class Driver {
     // still ends with the start's loss, not with none.
     if (options_.time_budget > 0 && result_.evaluations > 0 && elapsed() >= options_.time_budget)
       throw Stop{StopReason::time_budget,
-                 "the time budget of " + number(options_.time_budget) + " s ran out"};
+                 "the time budget of " + show_number(options_.time_budget) + " s ran out"};
     double loss = 0;
     try {
       loss = objective_(theta, gradient);
@@ -94,21 +90,22 @@ class Driver {
     if (callback_ && !callback_({k, loss, result_.evaluations, seconds, theta}))
       throw Stop{StopReason::stopped, "stopped on request after iteration " + std::to_string(k)};
     if (loss <= options_.loss_tolerance)
-      throw Stop{StopReason::loss_small, "the loss " + number(loss) + " is within the tolerance " +
-                                             number(options_.loss_tolerance)};
+      throw Stop{StopReason::loss_small, "the loss " + show_number(loss) +
+                                             " is within the tolerance " +
+                                             show_number(options_.loss_tolerance)};
     if (k == 0) start_gradient_ = gradient.norm();
     if (gradient.norm() <= options_.gradient_tolerance * start_gradient_)
-      throw Stop{StopReason::gradient_small, "the gradient's norm " + number(gradient.norm()) +
+      throw Stop{StopReason::gradient_small, "the gradient's norm " + show_number(gradient.norm()) +
                                                  " is within " +
-                                                 number(options_.gradient_tolerance) +
-                                                 " of its start " + number(start_gradient_)};
+                                                 show_number(options_.gradient_tolerance) +
+                                                 " of its start " + show_number(start_gradient_)};
     const int w = options_.stall_iterations;
     if (w > 0 && k >= w) {
       const double before = result_.history[result_.history.size() - 1 - w].loss;
       if (before - loss <= options_.stall_tolerance * std::abs(loss))
         throw Stop{StopReason::stalled, "the loss fell by less than " +
-                                            number(options_.stall_tolerance * 100) + "% over " +
-                                            std::to_string(w) + " iterations"};
+                                            show_number(options_.stall_tolerance * 100) +
+                                            "% over " + std::to_string(w) + " iterations"};
     }
     if (k >= options_.max_iterations)
       throw Stop{
@@ -116,7 +113,7 @@ class Driver {
           "the budget of " + std::to_string(options_.max_iterations) + " iterations ran out"};
     if (options_.time_budget > 0 && seconds >= options_.time_budget)
       throw Stop{StopReason::time_budget,
-                 "the time budget of " + number(options_.time_budget) + " s ran out"};
+                 "the time budget of " + show_number(options_.time_budget) + " s ran out"};
     ++result_.iterations;
   }
 
@@ -135,7 +132,7 @@ class Driver {
       result_.message = why + "; no evaluation had a finite loss, the start point is returned";
     else
       result_.message =
-          why + "; the best parameters seen (loss " + number(result_.best_loss) + ") are kept";
+          why + "; the best parameters seen (loss " + show_number(result_.best_loss) + ") are kept";
     return result_;
   }
 

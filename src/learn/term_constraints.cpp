@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+
+#include "core/io/physical_limits.h"
 
 namespace neurocloth {
 namespace {
@@ -53,12 +54,6 @@ MembershipFunction& function_of(FuzzySystem& s, const TermRef& r) {
 std::string term_name(const FuzzySystem& s, const TermRef& r) {
   const LinguisticVariable& v = variable_of(s, r);
   return v.name + "." + v.terms[r.term].name;
-}
-
-std::string number(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
 }
 
 // The nearest nondecreasing sequence (pool adjacent violators): the projection
@@ -195,13 +190,13 @@ bool TermConstraints::project_term(FuzzySystem& s, const Tuned& t,
     for (std::size_t i = 1; i + 1 < x.size(); ++i)
       x[i] = std::clamp(x[i], a, std::max(a, b));
     changed = true;
-    note(name + " held at the minimum width " + number(t.min_width));
+    note(name + " held at the minimum width " + show_number(t.min_width));
   }
   if (t.width >= 0 && std::abs(p[t.width]) < t.min_width) {
     p[t.width] = std::copysign(t.min_width, p[t.width] == 0 ? 1.0 : p[t.width]);
     changed = true;
     note(name + "[" + std::to_string(t.width) + "] held at the minimum width " +
-         number(t.min_width));
+         show_number(t.min_width));
   }
   // Inside the range (or where it started, when that was outside).
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -210,7 +205,8 @@ bool TermConstraints::project_term(FuzzySystem& s, const Tuned& t,
       const LinguisticVariable& v = variable_of(s, t.ref);
       const bool at_end = c == v.min || c == v.max;
       note(name + "[" + std::to_string(t.positions[i]) + "] held at " +
-           (at_end ? "the range's end " : "its starting value (outside the RANGE) ") + number(c));
+           (at_end ? "the range's end " : "its starting value (outside the RANGE) ") +
+           show_number(c));
       x[i] = c;
     }
   }

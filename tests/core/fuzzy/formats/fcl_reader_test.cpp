@@ -283,7 +283,7 @@ TEST(FclReader, ReadsTheExampleInTheDocumentation) {
 }
 
 TEST(FclReader, ReadsAFileAndNamesItInErrors) {
-  const fs::path dir = test::scratch_dir();
+  const fs::path dir = neurocloth::test::scratch_dir();
   const std::string good = (dir / "good.fcl").string();
   std::ofstream(good, std::ios::binary) << kBase;
   EXPECT_EQ(read_fcl(good).outputs[1].name, "damping");

@@ -90,7 +90,7 @@ TEST_P(RuleFileDialect, InfersWhatItsStandardTextInfers) {
 // Written in our FCL, and (for .fis) in .fis again, then read: the same numbers.
 TEST_P(RuleFileDialect, WritesBackAndReadsToTheSameInference) {
   const FuzzySystem s = read_rule_file(data(GetParam().file));
-  const fs::path dir = test::scratch_dir();
+  const fs::path dir = neurocloth::test::scratch_dir();
   const std::string stem = fs::path(GetParam().file).stem().string();
   const std::string fcl = (dir / (stem + ".fcl")).string();
   write_rule_file(s, fcl);
@@ -119,7 +119,7 @@ TEST(RuleFile, PicksTheReaderByExtension) {
   EXPECT_EQ(rule_format("a/b.FIS"), RuleFormat::fis);
   EXPECT_EQ(rule_format("/dev/stdin"), RuleFormat::fcl);  // as before .fis was read
   // A .fis file is read as .fis: its error names a .fis field.
-  const fs::path path = test::scratch_dir() / "empty.fis";
+  const fs::path path = neurocloth::test::scratch_dir() / "empty.fis";
   write_file_atomically(path.string(), std::string("[System]\n"));
   try {
     read_rule_file(path.string());
@@ -133,7 +133,7 @@ TEST(RuleFile, PicksTheReaderByExtension) {
 // A system .fis cannot hold is refused before anything is written.
 TEST(RuleFile, RefusesToWriteWhatTheFormatCannotHoldAndLeavesNoFile) {
   const FuzzySystem s = read_rule_file(data("fuzzylite_drape.fcl"));  // COG and COGS outputs
-  const fs::path path = test::scratch_dir() / "refused.fis";
+  const fs::path path = neurocloth::test::scratch_dir() / "refused.fis";
   EXPECT_THROW(write_rule_file(s, path.string()), std::invalid_argument);
   EXPECT_FALSE(fs::exists(path));
 }
