@@ -21,8 +21,8 @@ namespace neurocloth {
 namespace {
 
 constexpr double kG = 9.81;
-constexpr double kThickness = 0.005;  // the default
-constexpr double kSlack = 1e-9;       // "outside" allows this much round-off
+constexpr double kDefaultThickness = 0.005;  // the default
+constexpr double kSlack = 1e-9;              // "outside" allows this much round-off
 
 using test::SceneBuilder;
 using Json = SceneBuilder::Json;
@@ -78,9 +78,9 @@ void run_outside(Simulation& sim, double seconds, double slice, const Distance& 
     for (std::size_t i = 0; i < s.size(); ++i) {
       if (sim.network().masses.pinned(i)) continue;
       const double d = distance(s.position(i));
-      if (d < kThickness - kSlack) {
+      if (d < kDefaultThickness - kSlack) {
         ADD_FAILURE() << "node " << i << " at t=" << sim.time() << " is " << d
-                      << " m from the surface, inside the thickness " << kThickness;
+                      << " m from the surface, inside the thickness " << kDefaultThickness;
         return;
       }
     }
@@ -145,14 +145,14 @@ TEST(ColliderDrape, TableDrapeRestsOnTopAndHangsOverTheEdges) {
   const int n = 17;
   const Scene scene = resized_grid(test::asset_scene("table_drape"), n);
   const auto& box = std::get<BoxSpec>(scene.modules.at(0).spec);
-  ASSERT_EQ(box.contact.thickness, kThickness);
+  ASSERT_EQ(box.contact.thickness, kDefaultThickness);
   const double top = box.center.y() + box.half_extents.y();
   Simulation sim = scene.make_simulation();
   run_outside(sim, 3.0, 0.1,
               [&](const Vec3& p) { return box_distance(p, box.center, 2 * box.half_extents); });
   const ClothState& s = sim.state();
   const std::size_t middle = (n / 2) * n + n / 2;
-  EXPECT_NEAR(s.y[middle], top + kThickness, 3 * kThickness);
+  EXPECT_NEAR(s.y[middle], top + kDefaultThickness, 3 * kDefaultThickness);
   EXPECT_NEAR(s.x[middle], 0.0, 0.01);
   EXPECT_NEAR(s.z[middle], 0.0, 0.01);
   for (std::size_t corner :
@@ -169,7 +169,8 @@ TEST(ColliderDrape, ClothFallsOverASphere) {
                                 .module({{"type", "sphere"}, {"center", xyz(c)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 2.0, 0.1, distance);
-  EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
+  EXPECT_LT(nearest(sim, distance), kDefaultThickness + 1e-3)
+      << "the cloth does not rest on the sphere";
   const ClothState& s = sim.state();
   EXPECT_GT(*std::max_element(s.y.begin(), s.y.end()), c.y() + 0.9 * r) << "it fell off";
   EXPECT_LT(s.y[0], c.y()) << "the corner does not hang";
@@ -186,7 +187,8 @@ TEST(ColliderDrape, ClothFoldsOverACapsuleBar) {
                    .module({{"type", "capsule"}, {"a", xyz(a)}, {"b", xyz(b)}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return segment_distance(p, a, b) - r; };
   run_outside(sim, 2.0, 0.1, distance);
-  EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the bar";
+  EXPECT_LT(nearest(sim, distance), kDefaultThickness + 1e-3)
+      << "the cloth does not rest on the bar";
   const ClothState& s = sim.state();
   for (int col = 0; col < n; ++col) {
     EXPECT_LT(s.y[col], 0.3 - 0.2) << "first row, column " << col;
@@ -204,7 +206,7 @@ TEST(ColliderDrape, ClothLandsOnAPlaneAndLiesOnIt) {
   run_outside(sim, 1.5, 0.1, [&](const Vec3& p) { return normal.dot(p); });
   const ClothState& s = sim.state();
   for (std::size_t i = 0; i < s.size(); ++i)
-    EXPECT_NEAR(normal.dot(s.position(i)), kThickness, 1e-3) << "node " << i;
+    EXPECT_NEAR(normal.dot(s.position(i)), kDefaultThickness, 1e-3) << "node " << i;
 }
 
 // The same drop onto a sphere with the other integrators. (Explicit Euler is
@@ -220,7 +222,8 @@ TEST_P(ColliderIntegrators, KeepNodesOutsideASphere) {
                    .module({{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}}));
   const Distance distance = [&](const Vec3& p) { return (p - c).norm() - r; };
   run_outside(sim, 1.5, 0.1, distance);
-  EXPECT_LT(nearest(sim, distance), kThickness + 1e-3) << "the cloth does not rest on the sphere";
+  EXPECT_LT(nearest(sim, distance), kDefaultThickness + 1e-3)
+      << "the cloth does not rest on the sphere";
   const ClothState& s = sim.state();
   EXPECT_GT(*std::max_element(s.y.begin(), s.y.end()), 0.9 * r) << "it fell off";
   EXPECT_LT(sim.energy().kinetic, 0.05) << "not settling";
@@ -242,13 +245,13 @@ Slide slide(double slope, double material_friction, const Json& contact_keys,
             const char* integrator = "network", double seconds = 1.0) {
   const double theta = std::atan(slope);
   const Vec3 n(-std::sin(theta), std::cos(theta), 0), t(std::cos(theta), std::sin(theta), 0);
-  const Vec3 start = kThickness * n;
+  const Vec3 start = kDefaultThickness * n;
   Json plane = {{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", xyz(n)}};
   plane.update(contact_keys);
   Simulation sim = simulate(free_node(start, material_friction, integrator).module(plane));
   EXPECT_EQ(sim.advance(seconds), RunStatus::ok);
   const Vec3 p = sim.state().position(0);
-  return {(p - start).dot(t), sim.state().velocity(0).dot(t), n.dot(p) - kThickness};
+  return {(p - start).dot(t), sim.state().velocity(0).dot(t), n.dot(p) - kDefaultThickness};
 }
 
 double sliding_acceleration(double slope, double mu) {
@@ -326,11 +329,11 @@ TEST(ColliderTunnelling, FastNodeLandsOnTheBoxTop) {
          {Vec3(0, 0, 0), Vec3(0.37, 0, 0), Vec3(-0.38, 0, 0.2), Vec3(0.39, 0, -0.39)}) {
       Simulation sim = fast_node(xz + Vec3(0, 0.8, 0), Vec3(0, -10, 0), kTable, integrator);
       sim.advance(0.04);
-      EXPECT_NEAR(sim.state().y[0], 0.75 + kThickness, 1e-12)
+      EXPECT_NEAR(sim.state().y[0], 0.75 + kDefaultThickness, 1e-12)
           << integrator << " at " << xz.transpose();
       sim.advance(0.96);
       const Vec3 p = sim.state().position(0);
-      EXPECT_NEAR(p.y(), 0.75 + kThickness, 1e-12) << integrator << " at " << xz.transpose();
+      EXPECT_NEAR(p.y(), 0.75 + kDefaultThickness, 1e-12) << integrator << " at " << xz.transpose();
       EXPECT_NEAR(p.x(), xz.x(), 1e-12);
       EXPECT_NEAR(p.z(), xz.z(), 1e-12);
     }
@@ -341,9 +344,9 @@ TEST(ColliderTunnelling, FastNodeDoesNotCrossAThinBox) {
   Simulation sim = fast_node(Vec3(0.1, 0.6, 0), Vec3(0, -10, 0),
                              {{"type", "box"}, {"center", {0, 0.5, 0}}, {"size", {1, 0.02, 1}}});
   sim.advance(0.04);
-  EXPECT_NEAR(sim.state().y[0], 0.51 + kThickness, 1e-12);
+  EXPECT_NEAR(sim.state().y[0], 0.51 + kDefaultThickness, 1e-12);
   sim.advance(0.5);
-  EXPECT_NEAR(sim.state().y[0], 0.51 + kThickness, 1e-12);
+  EXPECT_NEAR(sim.state().y[0], 0.51 + kDefaultThickness, 1e-12);
 }
 
 // Thrown sideways into the box, the node stops at the side it hit.
@@ -351,7 +354,7 @@ TEST(ColliderTunnelling, FastNodeHitsTheSideItCameFrom) {
   Simulation sim = fast_node(Vec3(-0.5, 0.5, 0.1), Vec3(10, 0, 0), kTable);
   sim.advance(0.04);
   const Vec3 p = sim.state().position(0);
-  EXPECT_NEAR(p.x(), -0.4 - kThickness, 1e-12);
+  EXPECT_NEAR(p.x(), -0.4 - kDefaultThickness, 1e-12);
   EXPECT_GT(p.y(), 0.45);
   EXPECT_NEAR(p.z(), 0.1, 1e-12);
   EXPECT_LE(sim.state().vx[0], 0.0) << "the approach speed is not removed";
