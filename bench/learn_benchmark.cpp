@@ -1,4 +1,4 @@
-// What learning costs (docs/learning.md, README "Speed"): one gradient of the
+// What learning costs (docs/learning.md, "Measured"): one gradient of the
 // fit's loss (a forward run that keeps its tape, then the adjoint run back)
 // against one forward run alone, on the hanging scene's cloth resized to 32 x 32
 // over 500 steps of 1 ms, fitting the spring constant and the viscosity to a

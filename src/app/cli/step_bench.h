@@ -2,7 +2,7 @@
 // The one step benchmark: the cloth and the step rule that `neurocloth-cli
 // bench` and build/step_benchmark time, and the cloth build/module_benchmark
 // starts from. The cloth is the default scene's (the table drape) resized to
-// N x N, so every table in README's "Speed" speaks of the same cloth.
+// N x N, so every speed table (README "Speed", docs/history.md) speaks of the same cloth.
 #include <string>
 #include <vector>
 
