@@ -1,5 +1,6 @@
 #pragma once
 // Shared helpers: scenes come from assets/scenes (never re-typed in a test).
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/network/parameter_id.h"
 #include "core/scene/scene.h"
@@ -27,6 +29,16 @@ inline bool contains(const std::string& text, const std::string& part) {
 
 inline Scene asset_scene(const std::string& name) {
   return load_scene(assets_directory() + "/scenes/" + name + ".json");
+}
+
+// The names of the shipped scenes (assets/scenes/NAME.json), sorted: what
+// asset_scene() takes.
+inline std::vector<std::string> shipped_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(assets_directory() + "/scenes"))
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 // hanging_fuzzy with its rule base beside it in `dir`, loaded, and the rule

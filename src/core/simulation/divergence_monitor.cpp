@@ -29,24 +29,40 @@ DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& 
 }
 
 std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& s,
-                                     const ForceInputs& inputs) {
+                                     const ForceInputs& inputs, const ClothState& last_good) {
   if (!s.all_finite()) return "non-finite position or velocity (NaN or Inf)";
   const Energy e = net.energy(s);
   if (!std::isfinite(e.total())) return "non-finite energy";
   double external = 0;
   for (std::size_t i = 0; i < inputs.external_force.size(); ++i)
     external += inputs.external_force.at(i).norm();
-  const double budget = base_budget_ + std::max(0.0, gravity_start_ - e.gravity) + external * size_;
+  const double sources = base_budget_ + external * size_;
+  const double budget = sources + std::max(0.0, gravity_start_ - e.gravity);
   const double held = e.kinetic + e.spring;
-  auto reason = [&](const char* what) {
+  auto runaway = [&] {
     std::ostringstream os;
-    os << what << ": kinetic + spring energy " << held << " J against a budget of " << budget
+    os << "runaway energy: kinetic + spring energy " << held << " J against a budget of " << budget
        << " J";
     return os.str();
   };
-  if (held > settings_.hard_factor * budget) return reason("runaway energy");
-  if (held > settings_.runaway_factor * budget) {
-    if (++strikes_ >= settings_.runaway_checks) return reason("runaway energy");
+  if (held > settings_.hard_factor * budget) return runaway();
+
+  const double now = e.total() + net.external_potential(s, inputs);
+  const double before = net.energy(last_good).total() + net.external_potential(last_good, inputs);
+  const double allowance = settings_.growth_factor * sources + settings_.growth_fraction * held;
+  const double growth = now - before;
+  if (std::isfinite(growth)) largest_growth_ = std::max(largest_growth_, growth / allowance);
+  auto unexplained = [&] {
+    std::ostringstream os;
+    os << "energy grew with no source to explain it: kinetic + spring + gravity energy rose by "
+       << growth << " J since the last good state, more than the " << allowance
+       << " J that wind, moving pins, a drag or the integrator's own error may put in between two "
+          "checks (a step above the stable step? docs/stability.md)";
+    return os.str();
+  };
+  const bool runs_away = held > settings_.runaway_factor * budget;
+  if (runs_away || growth > allowance) {
+    if (++strikes_ >= settings_.runaway_checks) return runs_away ? runaway() : unexplained();
   } else {
     strikes_ = 0;
   }
@@ -59,7 +75,10 @@ bool DivergenceMonitor::same_bits(const DivergenceMonitor& o) const {
   return a.check_interval == b.check_interval && same_bits(a.runaway_factor, b.runaway_factor) &&
          a.runaway_checks == b.runaway_checks && same_bits(a.hard_factor, b.hard_factor) &&
          same_bits(size_, o.size_) && same_bits(base_budget_, o.base_budget_) &&
-         same_bits(gravity_start_, o.gravity_start_) && strikes_ == o.strikes_;
+         same_bits(gravity_start_, o.gravity_start_) && strikes_ == o.strikes_ &&
+         same_bits(largest_growth_, o.largest_growth_) &&
+         same_bits(a.growth_factor, b.growth_factor) &&
+         same_bits(a.growth_fraction, b.growth_fraction);
 }
 
 }  // namespace neurocloth

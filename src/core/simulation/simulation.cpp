@@ -237,7 +237,7 @@ RunStatus Simulation::check_now() {
 void Simulation::full_check() {
   run_.counters.steps_since_check = 0;
   run_.counters.degenerate_springs = net_.degenerate_springs(state());
-  std::string why = run_.monitor.check(net_, state(), run_.inputs);
+  std::string why = run_.monitor.check(net_, state(), run_.inputs, run_.checkpoint.state);
   if (why.empty()) {
     if (!run_.monitor.striking()) run_.checkpoint = {state(), run_.time, run_.counters.steps};
     return;

@@ -125,6 +125,9 @@ class Simulation {
   const SolverSettings& settings() const { return settings_; }
   RunStatus status() const { return run_.status; }
   const std::string& divergence_reason() const { return run_.reason; }
+  // The largest unexplained rise of the energy the divergence check has seen,
+  // in allowances (DivergenceMonitor::largest_growth; above 1 is a strike).
+  double largest_energy_growth() const { return run_.monitor.largest_growth(); }
   double time() const { return run_.time; }
   long steps() const { return run_.counters.steps; }
   long rejected_steps() const { return run_.counters.rejected; }

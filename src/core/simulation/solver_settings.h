@@ -31,6 +31,13 @@ struct DivergenceSettings {
   double runaway_factor = 1e4;  // energy above factor * budget is a strike
   int runaway_checks = 2;       // consecutive strikes that make a divergence
   double hard_factor = 1e10;    // above this, one strike is enough
+  // The mechanical energy may rise over the last good state's by this many
+  // budgets, plus this fraction of the kinetic + spring energy it holds (an
+  // integrator's error is relative: forward Euler's free fall gains 1/64 of
+  // its kinetic energy over its first 64 steps), between checks
+  // (divergence_monitor.h; measured in docs/stability.md).
+  double growth_factor = 1.0;
+  double growth_fraction = 0.1;
 };
 
 struct SolverSettings {

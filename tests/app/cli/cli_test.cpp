@@ -10,6 +10,7 @@
 #include "core/scene/obj_mesh_writer.h"
 #include "support/cli_fixture.h"
 #include "support/shuffled_grid.h"
+#include "support/test_support.h"
 
 namespace neurocloth::cli_test {
 namespace {
@@ -128,6 +129,19 @@ TEST_F(Cli, DivergedRunExitsThreeWithTheLastGoodState) {
   EXPECT_EQ(doc.at("positions").size(), 400u);
   EXPECT_EQ(doc.at("velocities").size(), 400u);
   expect_all_finite(doc, "result");
+}
+
+// A fixed step above the stable step is said before the run; the same step
+// within it is not. (20 ms is far above explicit Euler's on the hanging cloth.)
+TEST_F(Cli, AFixedStepAboveTheStableStepIsSaidBeforeTheRun) {
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--integrator", "explicit_euler",
+                         "--dt", "0.02", "--seconds", "0.1", "--out", result_path()});
+  EXPECT_TRUE(test::contains(r.out, "note: dt = 0.02 s is above the stable step of explicit_euler"))
+      << r.out;
+  const Outcome fine =
+      run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--out", result_path()});
+  ASSERT_EQ(fine.code, kOk) << fine.err;
+  EXPECT_FALSE(test::contains(fine.out, "above the stable step")) << fine.out;
 }
 
 // 1e7 N/m on 1e-5 kg nodes: the adaptive step's cap is ~2e-7 s, so 0.5 s would

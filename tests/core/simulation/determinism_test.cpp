@@ -1,18 +1,23 @@
-// Determinism against stored values: every shipped scene under every
-// integrator, run a short fixed time, hashes to what
-// tests/data/determinism_hashes.json holds. Two runs compared within one
-// process would agree however a change moved the numbers; a stored hash fails
-// on any change to the bits, so a change to the numerics is made on purpose:
-// rerun with NEUROCLOTH_UPDATE_HASHES=1, which rewrites the file, and commit
-// the diff with the reason (docs/testing.md).
+// Determinism against stored values: every shipped scene, with its own solver
+// settings (the adaptive propagation where it declares it) and under every
+// integrator at a step where that integrator is stable, run over a horizon in
+// which its modules act, hashes to what tests/data/determinism_hashes.json
+// holds. Two runs compared within one process would agree however a change
+// moved the numbers; a stored hash fails on any change to the bits, so a change
+// to the numerics is made on purpose: rerun with NEUROCLOTH_UPDATE_HASHES=1,
+// which rewrites the file, and commit the diff with the reason
+// (docs/testing.md). A hashed run must end ok: a divergence rolls back to the
+// last good state, which would hash the same for every integrator that
+// diverged; the rollback has its own test below.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/io/text_file.h"
 #include "core/network/spring_chunk_avx512.h"
@@ -21,28 +26,60 @@
 
 namespace neurocloth {
 namespace {
-namespace fs = std::filesystem;
 
-// Simulated time per case: enough steps for every scene's forces and modules
-// to act (and for the stiffer cases to diverge, which is hashed like the rest),
-// short enough that all cases run in seconds under the sanitizers.
-constexpr double kSeconds = 0.2;
+// Simulated time per scene: long enough that each of its modules has acted
+// (DeterminismHorizon.EachModuleActsWithinIt checks it), short enough that
+// all cases run in seconds under the sanitizers. Every shipped scene must be
+// listed: a new scene needs a horizon chosen for what it does.
+const std::map<std::string, double> kHorizons = {
+    {"chain.json", 0.3},                   // the springs stretch and swing
+    {"curtain.json", 0.6},                 // its pins start moving at 0.5 s
+    {"flag.json", 0.4},                    // the wind and its gusts
+    {"free_cloth.json", 0.3},              // no modules
+    {"free_fall.json", 0.3},               // no modules
+    {"hanging.json", 0.3},                 // no modules
+    {"hanging_fuzzy.json", 0.3},           // no modules
+    {"mesh_square.json", 0.3},             // no modules
+    {"sphere_drop.json", 0.8},             // on the sphere at 0.29 s; folds touch later
+    {"spring_mass.json", 0.3},             // no modules
+    {"table_drape.json", 0.5},             // on the table at 0.23 s, then slides
+    {"table_drape_damping003.json", 0.5},  // the same
+    {"table_drape_damping005.json", 0.5},  // the same
+    {"table_drape_dt001.json", 0.5},       // the same
+};
 
 const std::string kHashFile = std::string(NEUROCLOTH_TEST_DATA) + "/determinism_hashes.json";
+// The hash key of a scene run with its own solver settings.
+const std::string kOwnSettings = "own settings";
 
-// The scene's dt as a fixed step under `integrator`, run kSeconds: the bits of
-// the positions, velocities, time, step count and status.
-std::uint64_t run_hash(const Scene& shipped, IntegratorKind integrator) {
+double horizon(const std::string& file) {
+  const auto it = kHorizons.find(file);
+  if (it == kHorizons.end())
+    throw std::runtime_error(file + " has no horizon in determinism_test.cpp: give it one");
+  return it->second;
+}
+
+// `shipped` under `integrator` at the scene's dt, taken in equal substeps
+// under the integrator's stable step (SolverSettings::substep_above_cap): the
+// implicit integrators and the stable explicit cases take dt itself.
+Scene stable_fixed_step(const Scene& shipped, IntegratorKind integrator) {
   Scene scene = shipped;
   scene.solver.integrator = integrator;
   scene.solver.adaptive = false;
+  scene.solver.substep_above_cap = true;
+  return scene;
+}
+
+// The bits of the positions, velocities, time and step count after `seconds`.
+std::uint64_t run_hash(const Scene& scene, double seconds, const std::string& what) {
   Simulation sim = scene.make_simulation();
-  const RunStatus status = sim.advance(kSeconds);
+  const RunStatus status = sim.advance(seconds);
+  EXPECT_EQ(status, RunStatus::ok) << what << " diverged (" << sim.divergence_reason()
+                                   << "): a diverging case is not a determinism hash";
   test::Fnv1a h;
   h.mix(sim.state());
   h.mix(sim.time());
   h.mix(static_cast<std::uint64_t>(sim.steps()));
-  h.mix(static_cast<std::uint64_t>(status));
   return h.hash;
 }
 
@@ -52,17 +89,19 @@ std::string hex(std::uint64_t v) {
   return buf;
 }
 
-// Scene file name -> integrator -> hash, in a stable order.
+// Scene file name -> its own settings or an integrator -> hash, in a stable order.
 using Hashes = std::map<std::string, std::map<std::string, std::string>>;
 
-Hashes measure_every_case() {
-  Hashes hashes;
-  for (const auto& entry : fs::directory_iterator(fs::path(assets_directory()) / "scenes")) {
-    if (entry.path().extension() != ".json") continue;
-    const Scene scene = load_scene(entry.path().string());
-    for (IntegratorKind k : kAllIntegrators)
-      hashes[entry.path().filename().string()][to_string(k)] = hex(run_hash(scene, k));
-  }
+// One scene's hashes: its own settings and every integrator.
+std::map<std::string, std::string> measure_scene(const std::string& name) {
+  const std::string file = name + ".json";
+  const Scene scene = test::asset_scene(name);
+  const double T = horizon(file);
+  std::map<std::string, std::string> hashes;
+  hashes[kOwnSettings] = hex(run_hash(scene, T, file + " with its own settings"));
+  for (IntegratorKind k : kAllIntegrators)
+    hashes[to_string(k)] =
+        hex(run_hash(stable_fixed_step(scene, k), T, file + " under " + to_string(k)));
   return hashes;
 }
 
@@ -71,38 +110,104 @@ bool updating() {
   return v != nullptr && std::string(v) == "1";
 }
 
-TEST(Determinism, EveryShippedSceneUnderEveryIntegratorMatchesItsStoredHash) {
+Hashes stored_hashes() {
+  return nlohmann::json::parse(read_text_file(kHashFile, "hash file", kMaxSceneBytes))
+      .get<Hashes>();
+}
+
+// One test per scene, so that ctest runs them side by side. Updating rewrites
+// the scene's entry in the file: run the binary itself for that (one process,
+// the scenes one after another), not ctest.
+class Determinism : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Determinism, TheSceneMatchesItsStoredHashes) {
   // The stored bits are an AVX-512 build's: its spring kernel's 1/len differs
   // from the portable one's in the last place (spring_chunk_avx512.h).
   if (!spring_chunks::kHandVectorised)
     GTEST_SKIP() << "the stored hashes are an AVX-512 build's; this build uses the portable "
                     "spring kernel (docs/network.md, \"Why the step is fast\")";
-  const Hashes measured = measure_every_case();
-  // Every scene and integrator, or the directory was not read.
-  ASSERT_GE(measured.size(), 6u);
+  const std::string file = GetParam() + ".json";
+  const std::map<std::string, std::string> measured = measure_scene(GetParam());
   if (updating()) {
-    write_file_atomically(kHashFile, nlohmann::json(measured).dump(2) + "\n");
-    std::printf("wrote %s: review the diff and commit it with the reason\n", kHashFile.c_str());
+    Hashes all = stored_hashes();
+    all[file] = measured;
+    write_file_atomically(kHashFile, nlohmann::json(all).dump(2) + "\n");
+    std::printf("wrote %s for %s: review the diff and commit it with the reason\n",
+                kHashFile.c_str(), file.c_str());
     return;
   }
-  const Hashes stored =
-      nlohmann::json::parse(read_text_file(kHashFile, "hash file", kMaxSceneBytes)).get<Hashes>();
+  const Hashes stored = stored_hashes();
   const std::string how =
-      "\n  (an intended change to the numerics: rerun with "
+      "\n  (an intended change to the numerics: rerun core_tests with "
       "NEUROCLOTH_UPDATE_HASHES=1, review and commit " +
       kHashFile + "; docs/testing.md)";
-  for (const auto& [scene, by_integrator] : measured)
-    for (const auto& [integrator, hash] : by_integrator) {
-      const auto s = stored.find(scene);
-      const bool known = s != stored.end() && s->second.count(integrator) != 0;
-      EXPECT_TRUE(known) << scene << " under " << integrator << " has no stored hash" << how;
-      if (known) {
-        EXPECT_EQ(hash, s->second.at(integrator))
-            << scene << " under " << integrator << " ran to other bits" << how;
-      }
+  const auto s = stored.find(file);
+  ASSERT_NE(s, stored.end()) << file << " has no stored hashes" << how;
+  for (const auto& [run, hash] : measured) {
+    const bool known = s->second.count(run) != 0;
+    EXPECT_TRUE(known) << file << " (" << run << ") has no stored hash" << how;
+    if (known) {
+      EXPECT_EQ(hash, s->second.at(run)) << file << " (" << run << ") ran to other bits" << how;
     }
-  for (const auto& [scene, unused] : stored)
-    EXPECT_EQ(measured.count(scene), 1u) << scene << " is stored but no longer shipped" << how;
+  }
+  EXPECT_EQ(s->second.size(), measured.size()) << file << ": stored cases no longer run" << how;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryShippedScene, Determinism,
+                         ::testing::ValuesIn(test::shipped_scene_names()));
+
+// Every stored scene is still shipped (and so still checked).
+TEST(DeterminismFile, HoldsOnlyShippedScenes) {
+  const std::vector<std::string> names = test::shipped_scene_names();
+  ASSERT_GE(names.size(), 6u);  // or the directory was not read
+  for (const auto& [file, unused] : stored_hashes())
+    EXPECT_NE(std::find(names.begin(), names.end(), file.substr(0, file.size() - 5)), names.end())
+        << file << " is stored but no longer shipped";
+}
+
+// The horizon is where the modules act: without any one of them the scene's
+// own run ends elsewhere. (A module that has not touched the cloth by then
+// would leave the bits as they are, and its code would go unhashed.)
+TEST(DeterminismHorizon, EachModuleActsWithinIt) {
+  for (const std::string& name : test::shipped_scene_names()) {
+    const std::string file = name + ".json";
+    const Scene scene = test::asset_scene(name);
+    if (scene.modules.empty()) continue;
+    const double T = horizon(file);
+    const std::uint64_t all = run_hash(scene, T, file);
+    for (std::size_t m = 0; m < scene.modules.size(); ++m) {
+      Scene without = scene;
+      without.modules.erase(without.modules.begin() + static_cast<std::ptrdiff_t>(m));
+      EXPECT_NE(run_hash(without, T, file + " without " + scene.modules[m].type), all)
+          << file << ": " << scene.modules[m].type << " has not acted by t = " << T << " s";
+    }
+  }
+}
+
+// A run that diverges rolls back to its last good state: that state is the
+// one the same run reaches at the reported time, bit for bit, and the status
+// stays diverged. The flag's wind at its scene's dt of 0.01 s, as a plain
+// fixed step, is far above the explicit integrators' stable step (they used to
+// store one hash between them: the start they rolled back to); checked after
+// every step, the last good state is one the run reached, not the start.
+TEST(DeterminismRollback, ADivergedRunKeepsTheBitsOfItsLastGoodState) {
+  const Scene flag = test::asset_scene("flag");
+  for (IntegratorKind k : {IntegratorKind::network, IntegratorKind::explicit_euler,
+                           IntegratorKind::verlet, IntegratorKind::rk4}) {
+    Scene scene = flag;
+    scene.solver.integrator = k;
+    scene.solver.adaptive = false;
+    scene.solver.divergence.check_interval = 1;
+    Simulation sim = scene.make_simulation();
+    ASSERT_EQ(sim.advance(2.0), RunStatus::diverged) << to_string(k);
+    EXPECT_FALSE(sim.divergence_reason().empty());
+    EXPECT_GT(sim.steps(), 0) << to_string(k);
+    EXPECT_TRUE(sim.state().all_finite());
+    Simulation replay = scene.make_simulation();
+    ASSERT_EQ(replay.advance(sim.time()), RunStatus::ok) << to_string(k);
+    EXPECT_EQ(replay.steps(), sim.steps()) << to_string(k);
+    EXPECT_EQ(test::state_hash(replay.state()), test::state_hash(sim.state())) << to_string(k);
+  }
 }
 
 }  // namespace

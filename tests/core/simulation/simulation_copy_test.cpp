@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -13,14 +12,6 @@
 
 namespace neurocloth {
 namespace {
-
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(assets_directory() + "/scenes"))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 // A run's whole observable result: state bits, clock and counters.
 struct Outcome {
@@ -85,7 +76,8 @@ TEST_P(SimulationCopy, MovedSimulationContinuesBitIdentical) {
   EXPECT_EQ(outcome(moved), outcome(reference));
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryShippedScene, SimulationCopy, ::testing::ValuesIn(shipped_scenes()),
+INSTANTIATE_TEST_SUITE_P(EveryShippedScene, SimulationCopy,
+                         ::testing::ValuesIn(test::shipped_scene_names()),
                          [](const auto& info) { return info.param; });
 
 // A live change made on a copy (a module's parameter, gravity, an external
