@@ -76,8 +76,8 @@ class FisWriter {
         std::string("ImpMethod='") + (b.activation == Activation::product ? "prod" : "min") + "'\n";
     out_ +=
         std::string("AggMethod='") + (b.accumulation == Accumulation::sum ? "sum" : "max") + "'\n";
-    out_ += std::string("DefuzzMethod='") + (sugeno_ ? "wtaver" : "centroid") +
-            "'\n";  // the first output's
+    // The first output's (a hybrid system's other outputs differ).
+    out_ += std::string("DefuzzMethod='") + (sugeno_ ? "wtaver" : "centroid") + "'\n";
     for (std::size_t i = 0; i < s_.inputs.size(); ++i)
       variable("Input", i, s_.inputs[i], false);
     for (std::size_t i = 0; i < s_.outputs.size(); ++i)
