@@ -213,8 +213,8 @@ int run_tune_rules(const TuneRulesOptions& o) {
   RuleTuningOptions tuning;
   check_options(o, tuning);
   const fuzzy::FuzzySystem system = read_rules(o.rules);
-  // A .fis cannot hold every rule base (hedges, point lists, nested
-  // conditions): said before the search, not after it.
+  // A .fis cannot hold every rule base (stacked hedges, nested conditions,
+  // DEFAULT values): said before the search, not after it.
   if (fuzzy::rule_format(o.out) == fuzzy::RuleFormat::fis) try {
       fuzzy::write_fis(system);
     } catch (const std::invalid_argument& e) {

@@ -91,6 +91,9 @@ std::string MembershipFunction::validate() const {
   switch (shape) {
     case Shape::points:
       if (params.size() < 2 || params.size() % 2) return "a point list needs (x, y) pairs";
+      if (params.size() / 2 > kMaxPoints)
+        return "a point list holds at most " + std::to_string(kMaxPoints) + " points, got " +
+               std::to_string(params.size() / 2);
       for (std::size_t i = 0; i + 1 < params.size(); i += 2) {
         if (params[i + 1] < 0 || params[i + 1] > 1) return "membership degrees must be in [0, 1]";
         if (i >= 2 && params[i] < params[i - 2]) return "point x values must not decrease";
@@ -111,6 +114,11 @@ std::string MembershipFunction::validate() const {
     default:
       return {};
   }
+}
+
+MembershipFunction ramp(double start, double end) {
+  if (start < end) return {Shape::points, {start, 0, end, 1}};
+  return {Shape::points, {end, 1, start, 0}};
 }
 
 namespace {

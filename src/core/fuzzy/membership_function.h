@@ -2,6 +2,7 @@
 // A linguistic term's membership function mu(x) in [0, 1] (or, for a
 // Takagi-Sugeno output, its consequent function). Written once over the scalar
 // type T so that inference and its derivatives share the code (see dual.h).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,11 @@ enum class Shape {
   singleton,  // value           : 1 at x = value (outputs: a Sugeno constant)
   linear,     // c0 c1 .. cn     : Sugeno consequent c0 + sum_i c_i * input_i (outputs only)
 };
+
+// The most points a point list may hold: far above what a person or a tool
+// writes (fuzzylite's Discrete terms have tens), far below what would slow
+// every inference down. validate() refuses more, so every reader does.
+inline constexpr std::size_t kMaxPoints = 10000;
 
 const char* to_string(Shape s);
 // Number of parameters a shape takes; -1 for points and linear (variable).
@@ -44,5 +50,9 @@ struct MembershipFunction {
   template <class T>
   T membership(const T& x, const T* p) const;
 };
+
+// fuzzylite's Ramp (FCL "Ramp start end", .fis 'rampmf',[start end]): 0 at
+// start, 1 at end, as the point list it draws. The caller refuses start == end.
+MembershipFunction ramp(double start, double end);
 
 }  // namespace neurocloth::fuzzy

@@ -152,13 +152,13 @@ MF2='b':'constant',[90]
   EXPECT_TRUE(fs::exists(out_dir() / "tuned.examples.csv"));
   fs::remove(tuned);
   fs::remove(out_dir() / "tuned.examples.csv");
-  // A rule base a .fis cannot hold (a point list) is refused before the
+  // A rule base a .fis cannot hold (a DEFAULT) is refused before the
   // search, naming --out.
-  const std::string points = write(
-      "points.fcl", with(kTunedRules, "TERM low := trian 0 0 10;", "TERM low := (0, 1) (10, 0);"));
-  expect_input_error({"tune-rules", "--rules", points, "--examples", write("ex2.csv", csv), "--out",
-                      (out_dir() / "p.fis").string(), "--what", "consequents"},
-                     {"--out", ".fis"});
+  const std::string defaulted =
+      write("default.fcl", with(kTunedRules, "METHOD : COGS;", "METHOD : COGS;\n  DEFAULT := 50;"));
+  expect_input_error({"tune-rules", "--rules", defaulted, "--examples", write("ex2.csv", csv),
+                      "--out", (out_dir() / "p.fis").string(), "--what", "consequents"},
+                     {"--out", ".fis", "DEFAULT 50"});
 }
 
 TEST_F(CliTuneRules, TunesTermsWithAProgressLine) {

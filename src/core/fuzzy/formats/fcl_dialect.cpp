@@ -226,8 +226,7 @@ MembershipFunction Parser::ramp(const Token& head) {
   const double end = expect_number("the Ramp end (a number)");
   height(head);
   if (start == end) fail("Ramp needs start != end", where(head));
-  if (start < end) return {Shape::points, {start, 0, end, 1}};
-  return {Shape::points, {end, 1, start, 0}};
+  return fuzzy::ramp(start, end);
 }
 
 // ENABLED : TRUE; (fuzzylite). A disabled variable or rule block would change

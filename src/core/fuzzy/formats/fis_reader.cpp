@@ -1,5 +1,6 @@
 #include "core/fuzzy/formats/fis_reader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <initializer_list>
@@ -22,6 +23,16 @@ using fis::Section;
 using fis::kMaxRules;
 using fis::kMaxTerms;
 using fis::kMaxVariables;
+
+// The most numbers an MF line may hold: a discretemf of kMaxPoints points, or
+// a linear term over kMaxVariables inputs. More is refused while reading, before
+// anything is stored.
+constexpr std::size_t kMaxMfParameters =
+    std::max<std::size_t>(2 * kMaxPoints + 2, 2 + kMaxVariables);
+
+// What [System] Type says the outputs are. fuzzylite writes 'hybrid' for a
+// system with both kinds; each output is then what its MFs are.
+enum class FisType { mamdani, sugeno, hybrid };
 
 // A rule's entry for one variable: which MF (1-based, 0 = none), NOT, and
 // Octave's hedge code in the fraction (.05 somewhat, .2 very).
@@ -50,6 +61,7 @@ class FisParser {
              "section beyond Num" + s.kind +
                  "s=" + std::to_string(s.kind == "Input" ? num_inputs_ : num_outputs_),
              s.line);
+    if (type_ == FisType::hybrid) check_hybrid_defuzz(system);
     rules(section_for("Rules", 0, system));
     return std::move(system_);
   }
@@ -105,11 +117,13 @@ class FisParser {
       fis::number(e->value, s.title() + " Version", e->line, path_);
     const Entry& type = required(s, "Type");
     const std::string t = fis::lower(fis::text(type, s, path_));
-    if (t != "mamdani" && t != "sugeno")
+    if (t != "mamdani" && t != "sugeno" && t != "hybrid")
       fail(s.title() + " Type",
-           "Type '" + fis::shown(t) + "' is not supported: this engine reads mamdani and sugeno",
+           "Type '" + fis::shown(t) +
+               "' is not supported: this engine reads mamdani, sugeno and hybrid (fuzzylite)",
            type.line);
-    sugeno_ = t == "sugeno";
+    type_ = t == "sugeno" ? FisType::sugeno : t == "hybrid" ? FisType::hybrid : FisType::mamdani;
+    const bool sugeno = type_ == FisType::sugeno;
     num_inputs_ = count(s, "NumInputs", kMaxVariables);
     num_outputs_ = count(s, "NumOutputs", kMaxVariables);
     num_rules_ = count(s, "NumRules", kMaxRules);
@@ -119,15 +133,32 @@ class FisParser {
     if (num_rules_ == 0)
       fail(s.title() + " NumRules", "a rule base needs a rule", required(s, "NumRules").line);
     // MATLAB's newfis defaults stand in for a method left out.
-    and_ = method(s, "AndMethod", sugeno_ ? "prod" : "min",
+    and_ = method(s, "AndMethod", sugeno ? "prod" : "min",
                   {{"min", 0}, {"prod", 1}, {"algebraic_product", 1}});
-    or_ = method(s, "OrMethod", sugeno_ ? "probor" : "max",
+    or_ = method(s, "OrMethod", sugeno ? "probor" : "max",
                  {{"max", 0}, {"probor", 1}, {"algebraic_sum", 1}});
-    imp_ = method(s, "ImpMethod", sugeno_ ? "prod" : "min",
+    imp_ = method(s, "ImpMethod", sugeno ? "prod" : "min",
                   {{"min", 0}, {"prod", 1}, {"algebraic_product", 1}});
-    agg_ = method(s, "AggMethod", sugeno_ ? "sum" : "max", {{"max", 0}, {"sum", 1}});
-    method(s, "DefuzzMethod", sugeno_ ? "wtaver" : "centroid",
-           {{sugeno_ ? "wtaver" : "centroid", 0}});
+    agg_ = method(s, "AggMethod", sugeno ? "sum" : "max", {{"max", 0}, {"sum", 1}});
+    // A hybrid system's DefuzzMethod is its first output's (what fuzzylite
+    // writes); check_hybrid_defuzz() holds it to that once the outputs are read.
+    if (type_ == FisType::hybrid)
+      hybrid_defuzz_ = method(s, "DefuzzMethod", nullptr, {{"centroid", 0}, {"wtaver", 1}});
+    else
+      method(s, "DefuzzMethod", sugeno ? "wtaver" : "centroid",
+             {{sugeno ? "wtaver" : "centroid", 0}});
+  }
+
+  void check_hybrid_defuzz(const Section& s) {
+    const LinguisticVariable& first = system_.outputs.front();
+    const int first_kind = first.method == Defuzzification::weighted_average ? 1 : 0;
+    if (hybrid_defuzz_ >= 0 && hybrid_defuzz_ != first_kind)
+      fail(s.title() + " DefuzzMethod",
+           std::string("a hybrid system's DefuzzMethod is its first output's, and '") +
+               fis::shown(first.name) + "' is " +
+               (first_kind ? "sugeno (wtaver, its MFs are constant or linear)"
+                           : "mamdani (centroid, its MFs are not constant or linear)"),
+           required(s, "DefuzzMethod").line);
   }
 
   int count(const Section& s, const std::string& key, int max) {
@@ -146,6 +177,7 @@ class FisParser {
   int method(const Section& s, const std::string& key, const char* fallback,
              std::initializer_list<std::pair<const char*, int>> known) {
     const Entry* e = s.find(key);
+    if (!e && !fallback) return -1;  // nothing to default to: the caller decides
     const std::string name = e ? fis::lower(fis::text(*e, s, path_)) : fallback;
     std::string offered;
     for (const auto& [k, v] : known) {
@@ -153,9 +185,13 @@ class FisParser {
       offered += (offered.empty() ? "" : ", ") + std::string(k);
     }
     fail(s.title() + " " + key,
-         key + " '" + fis::shown(name) + "' is not supported" +
-             (sugeno_ ? " for sugeno" : " for mamdani") + ": this engine offers " + offered,
+         key + " '" + fis::shown(name) + "' is not supported for " + type_name() +
+             ": this engine offers " + offered,
          e ? e->line : s.line);
+  }
+
+  const char* type_name() const {
+    return type_ == FisType::sugeno ? "sugeno" : type_ == FisType::hybrid ? "hybrid" : "mamdani";
   }
 
   // ---- [InputN] / [OutputN] -------------------------------------------------
@@ -186,6 +222,7 @@ class FisParser {
     const int n = count(s, "NumMFs", kMaxTerms);
     std::vector<const Entry*> mfs(static_cast<std::size_t>(n), nullptr);
     names_.clear();
+    output_sugeno_ = output && type_ == FisType::sugeno;
     for (const Entry& e : s.entries) {
       const int k = fis::mf_index(e.key);
       if (k < 0) continue;
@@ -193,6 +230,8 @@ class FisParser {
         fail(title + " " + e.key, e.key + " beyond NumMFs=" + std::to_string(n), e.line);
       mfs[static_cast<std::size_t>(k - 1)] = &e;
     }
+    if (output && type_ == FisType::hybrid && n > 0 && mfs[0])
+      output_sugeno_ = sugeno_mf(*mfs[0], title);
     for (int k = 1; k <= n; ++k) {
       const Entry* e = mfs[static_cast<std::size_t>(k - 1)];
       if (!e)
@@ -204,13 +243,23 @@ class FisParser {
     if (n == 0)
       fail(title + " NumMFs", "'" + fis::shown(v.name) + "' has no membership function",
            required(s, "NumMFs").line);
-    v.method = sugeno_ ? Defuzzification::weighted_average : Defuzzification::centroid;
+    v.method = output_sugeno_ ? Defuzzification::weighted_average : Defuzzification::centroid;
     return v;
+  }
+
+  // In a hybrid system an output is sugeno when its MF1 is constant or linear
+  // (as this engine reads FCL: COGS exactly when every term is a singleton or
+  // linear); shape() holds the other MFs to the same kind.
+  bool sugeno_mf(const Entry& e, const std::string& title) {
+    const fis::MfLine mf =
+        fis::mf_line(e.value, title + " " + e.key, e.line, path_, kMaxMfParameters);
+    const std::string type = fis::lower(mf.type);
+    return type == "constant" || type == "linear";
   }
 
   Term term(const Entry& e, const std::string& title, bool output) {
     const std::string field = title + " " + e.key;
-    const fis::MfLine mf = fis::mf_line(e.value, field, e.line, path_, 2 + kMaxVariables);
+    const fis::MfLine mf = fis::mf_line(e.value, field, e.line, path_, kMaxMfParameters);
     fis::check_name(mf.name, field, e.line, path_);
     if (!names_.insert(mf.name).second)
       fail(field, "duplicate membership function name '" + fis::shown(mf.name) + "'", e.line);
@@ -227,7 +276,8 @@ class FisParser {
   MembershipFunction shape(const fis::MfLine& mf, const std::string& field, int line, bool output) {
     const std::string type = fis::lower(mf.type);
     const auto& p = mf.params;
-    const bool sugeno_out = output && sugeno_;
+    const bool sugeno_out = output && output_sugeno_;
+    const bool hybrid = type_ == FisType::hybrid;
     auto need = [&](std::size_t n) {
       if (p.size() != n)
         fail(field,
@@ -238,7 +288,10 @@ class FisParser {
       if (!sugeno_out)
         fail(field,
              type + " is a Sugeno output; " +
-                 (output ? "this system is mamdani" : "not an input's membership function"),
+                 (!output  ? "not an input's membership function"
+                  : hybrid ? "this output of a hybrid system is mamdani (its MF1 is neither "
+                             "constant nor linear)"
+                           : "this system is mamdani"),
              line);
       if (type == "constant") {
         need(1);
@@ -253,8 +306,25 @@ class FisParser {
     if (sugeno_out)
       fail(field,
            "a sugeno output's membership functions are constant or linear, got " +
-               fis::shown(mf.type),
+               fis::shown(mf.type) +
+               (hybrid ? " (this output of a hybrid system is sugeno: its MF1 is constant or "
+                         "linear)"
+                       : ""),
            line);
+    // fuzzylite's Discrete and Ramp, as its FisExporter writes them.
+    if (type == "discretemf") {
+      if (p.size() < 2 || p.size() % 2)
+        fail(field,
+             "discretemf takes x y pairs ([x1 y1 x2 y2 ...]), got " + std::to_string(p.size()) +
+                 " numbers",
+             line);
+      return {Shape::points, p};  // validate() holds x in order, y in [0, 1], the count
+    }
+    if (type == "rampmf") {
+      need(2);
+      if (p[0] == p[1]) fail(field, "rampmf needs start != end", line);
+      return ramp(p[0], p[1]);
+    }
     // MATLAB's parameter orders; only gaussmf [sigma c] differs from ours.
     static const struct {
       const char* type;
@@ -274,7 +344,7 @@ class FisParser {
     fail(field,
          "membership function type '" + fis::shown(mf.type) +
              "' has no equivalent in this engine (it reads trimf, trapmf, gaussmf, gbellmf, sigmf, "
-             "constant and linear)",
+             "discretemf, rampmf, constant and linear)",
          line);
   }
 
@@ -333,7 +403,9 @@ class FisParser {
           entry(r.outputs[static_cast<std::size_t>(o)],
                 system_.outputs[static_cast<std::size_t>(o)], "output", field, row.line);
       if (e.mf == 0) continue;
-      if (sugeno_ && (e.negated || !e.hedges.empty()))
+      if (system_.outputs[static_cast<std::size_t>(o)].method ==
+              Defuzzification::weighted_average &&
+          (e.negated || !e.hedges.empty()))
         fail(field,
              "NOT or a hedge on sugeno output '" +
                  fis::shown(system_.outputs[static_cast<std::size_t>(o)].name) +
@@ -379,7 +451,9 @@ class FisParser {
   std::vector<Section> sections_;
   std::set<std::string> names_;  // of the MFs of the variable being read
   FuzzySystem system_;
-  bool sugeno_ = false;
+  FisType type_ = FisType::mamdani;
+  bool output_sugeno_ = false;  // of the variable being read
+  int hybrid_defuzz_ = -1;      // 0 centroid, 1 wtaver; -1 not given
   int num_inputs_ = 0, num_outputs_ = 0, num_rules_ = 0;
   int and_ = 0, or_ = 0, imp_ = 0, agg_ = 0;
 };

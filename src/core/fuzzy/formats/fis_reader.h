@@ -1,6 +1,8 @@
 #pragma once
 // Reads a MATLAB / Octave Fuzzy Logic Toolbox rule base (.fis: [System],
-// [Input1..n], [Output1..m], [Rules]) into a FuzzySystem. What is read and how
+// [Input1..n], [Output1..m], [Rules]) into a FuzzySystem, and what
+// fuzzylite's FisExporter adds to the format (Type='hybrid', 'discretemf',
+// 'rampmf'). What is read and how
 // it maps: docs/fcl.md, "Rule files from other tools". Every error is an
 // InputError naming file, line and field ("[Input2] MF3"); nothing half-loaded
 // is ever returned, and what this engine cannot evaluate (bisector, pimf, ...)

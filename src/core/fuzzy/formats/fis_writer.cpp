@@ -63,7 +63,7 @@ class FisWriter {
     out_ = "[System]\n";
     out_ += "Name='" + (s_.name.empty() ? std::string("fis") : quoted_name(s_.name, "the system")) +
             "'\n";
-    out_ += std::string("Type='") + (sugeno_ ? "sugeno" : "mamdani") + "'\n";
+    out_ += std::string("Type='") + (hybrid_ ? "hybrid" : sugeno_ ? "sugeno" : "mamdani") + "'\n";
     out_ += "Version=2.0\n";
     out_ += "NumInputs=" + std::to_string(s_.inputs.size()) + "\n";
     out_ += "NumOutputs=" + std::to_string(s_.outputs.size()) + "\n";
@@ -76,6 +76,7 @@ class FisWriter {
         std::string("ImpMethod='") + (b.activation == Activation::product ? "prod" : "min") + "'\n";
     out_ +=
         std::string("AggMethod='") + (b.accumulation == Accumulation::sum ? "sum" : "max") + "'\n";
+    // The first output's (a hybrid system's other outputs differ).
     out_ += std::string("DefuzzMethod='") + (sugeno_ ? "wtaver" : "centroid") + "'\n";
     for (std::size_t i = 0; i < s_.inputs.size(); ++i)
       variable("Input", i, s_.inputs[i], false);
@@ -89,16 +90,15 @@ class FisWriter {
   }
 
  private:
-  // One type for every output, one set of methods for every rule: a .fis
-  // system has a single [System] saying both.
+  // One set of methods for every rule: a .fis system has a single [System]
+  // saying them. Outputs defuzzified differently (COG and COGS) make
+  // fuzzylite's 'hybrid', whose DefuzzMethod is the first output's and whose
+  // readers tell each output's kind by its MFs.
   void check_system() {
     if (s_.outputs.empty()) refuse_fis("the system has no output");
     sugeno_ = s_.outputs.front().method == Defuzzification::weighted_average;
     for (const LinguisticVariable& v : s_.outputs)
-      if ((v.method == Defuzzification::weighted_average) != sugeno_)
-        refuse_fis(
-            "outputs '" + s_.outputs.front().name + "' and '" + v.name +
-            "' are defuzzified differently (COG and COGS); a .fis system is mamdani or sugeno");
+      hybrid_ = hybrid_ || (v.method == Defuzzification::weighted_average) != sugeno_;
     if (s_.blocks.empty()) refuse_fis("the system has no rule block");
     for (const RuleBlock& b : s_.blocks) {
       if (!same_methods(b, s_.blocks.front()))
@@ -122,11 +122,12 @@ class FisWriter {
       const std::string problem = t.function.validate();
       if (!problem.empty()) refuse_fis("term '" + t.name + "' of '" + v.name + "': " + problem);
       out_ += "MF" + std::to_string(k + 1) + "='" + quoted_name(t.name, "a term") +
-              "':" + membership(t, v, output) + "\n";
+              "':" + membership(t, v, output && v.method == Defuzzification::weighted_average) +
+              "\n";
     }
   }
 
-  std::string membership(const Term& t, const LinguisticVariable& v, bool output) {
+  std::string membership(const Term& t, const LinguisticVariable& v, bool sugeno_output) {
     const auto& p = t.function.params;
     const std::string where = "term '" + t.name + "' of '" + v.name + "'";
     switch (t.function.shape) {
@@ -141,7 +142,7 @@ class FisWriter {
       case Shape::sigmoid:
         return "'sigmf'," + vector(p);
       case Shape::singleton:
-        if (!(output && sugeno_))
+        if (!sugeno_output)
           refuse_fis(where + " is a singleton, which .fis has only as a sugeno output (constant)");
         return "'constant'," + vector(p);
       case Shape::linear: {
@@ -152,9 +153,10 @@ class FisWriter {
         return "'linear'," + vector(q);
       }
       case Shape::points:
-        break;
+        // fuzzylite's Discrete: x y pairs in one list (MATLAB has no such type).
+        return "'discretemf'," + vector(p);
     }
-    refuse_fis(where + " is a point list, which .fis has no membership function type for");
+    refuse_fis(where + " has a shape .fis has no membership function type for");
   }
 
   // "a1 .. an, c1 .. cm (w) : k": the MF index of each variable (0 when not
@@ -212,7 +214,8 @@ class FisWriter {
   }
 
   const FuzzySystem& s_;
-  bool sugeno_ = false;
+  bool sugeno_ = false;  // the first output is
+  bool hybrid_ = false;  // and some other output is not
   std::size_t rule_count_ = 0;
   std::string out_;
 };

@@ -2,10 +2,12 @@
 // Writes a FuzzySystem as a MATLAB / Octave .fis file that read_fis() reads
 // back to a system inferring the same numbers (17 significant digits). Throws
 // std::invalid_argument, saying what, for a system .fis cannot express:
-// stacked hedges, nested or repeated conditions, point-list terms, DEFAULT
-// values, rule blocks with different methods, Mamdani and Sugeno outputs
-// mixed. One hedge is written as Octave's code (.05 somewhat, .20 very),
-// which Octave reads and MATLAB does not.
+// stacked hedges, nested or repeated conditions, DEFAULT values, rule blocks
+// with different methods. Three things only some readers take: one hedge as
+// Octave's code (.05 somewhat, .20 very; Octave reads it, MATLAB does not),
+// and, as fuzzylite writes them, a point-list term as 'discretemf' and
+// Mamdani and Sugeno outputs together as Type='hybrid' (fuzzylite reads both,
+// MATLAB and Octave neither).
 #include <string>
 
 #include "core/fuzzy/fuzzy_system.h"

@@ -56,6 +56,53 @@ TEST(FisReader, ReadsOctaveHedgesCommentsAndCrLf) {
   EXPECT_EQ(s.outputs[0].terms[2].function.params, (std::vector<double>{0.1, 0.3, 0.02}));
 }
 
+// fuzzylite's FisExporter: a Discrete term as 'discretemf' with its x y pairs
+// in one list, read as the point list the FCL reader makes of "(x, y) ...".
+TEST(FisReader, ReadsFuzzylitesDiscretemfAsAPointList) {
+  const FuzzySystem s =
+      parse_fis(neurocloth::test::rule_file_text("matlab_defaults.fuzzylite.fis"), "d.fis");
+  const MembershipFunction& mf1 = s.inputs[0].terms[0].function;
+  EXPECT_EQ(mf1.shape, Shape::points);
+  EXPECT_EQ(mf1.params, (std::vector<double>{0, 1, 0.4, 0}));
+  EXPECT_EQ(s.outputs[0].terms[2].function.shape, Shape::points);
+  EXPECT_EQ(s.outputs[0].terms[2].function.params, (std::vector<double>{0.6, 0, 1, 1}));
+  // Equal x is a step, as in FCL.
+  std::string text = neurocloth::test::rule_file_text("matlab_drape.fis");
+  const std::string from = "'trimf',[0.2 0.5 0.8]";
+  text.replace(text.find(from), from.size(), "'discretemf',[0.2 0 0.5 0 0.5 1 0.8 1]");
+  const MembershipFunction step = parse_fis(text, "s.fis").inputs[0].terms[1].function;
+  EXPECT_EQ(step.params, (std::vector<double>{0.2, 0, 0.5, 0, 0.5, 1, 0.8, 1}));
+  EXPECT_EQ(step(0.49), 0.0);
+  EXPECT_EQ(step(0.51), 1.0);
+}
+
+// fuzzylite's Ramp ('rampmf',[start end]), read as the FCL reader reads Ramp.
+TEST(FisReader, ReadsFuzzylitesRampmf) {
+  std::string text = neurocloth::test::rule_file_text("matlab_drape.fis");
+  const std::string from = "'trimf',[0.2 0.5 0.8]";
+  text.replace(text.find(from), from.size(), "'rampmf',[0.6 0.1]");
+  const MembershipFunction falling = parse_fis(text, "r.fis").inputs[0].terms[1].function;
+  EXPECT_EQ(falling.shape, Shape::points);
+  EXPECT_EQ(falling.params, (std::vector<double>{0.1, 1, 0.6, 0}));
+}
+
+// fuzzylite's Type='hybrid': each output is what its MFs are, its
+// DefuzzMethod the first output's.
+TEST(FisReader, ReadsFuzzylitesHybridOutputsByTheirMfs) {
+  const FuzzySystem s = parse_fis(neurocloth::test::rule_file_text("cloth.fuzzylite.fis"), "c.fis");
+  ASSERT_EQ(s.outputs.size(), 5u);
+  for (const LinguisticVariable& v : s.outputs)
+    EXPECT_EQ(v.method,
+              v.name == "node_mass" ? Defuzzification::weighted_average : Defuzzification::centroid)
+        << v.name;
+  // MATLAB's order [a1 a2 a3 c] is ours [c a1 a2 a3].
+  EXPECT_EQ(s.outputs[1].terms[0].function.params, (std::vector<double>{0, 0.0025, 0, 0}));
+  // '# RuleBlock' lines are comments; the three blocks' rules are one block.
+  ASSERT_EQ(s.blocks.size(), 1u);
+  EXPECT_EQ(s.blocks[0].rules.size(), 22u);
+  EXPECT_EQ(s.blocks[0].rules[1].consequents[0].hedges, (std::vector<Hedge>{Hedge::very}));
+}
+
 struct BadFis {
   const char* name;
   std::vector<std::pair<std::string, std::string>> edits;  // replace first with second
@@ -88,6 +135,14 @@ TEST_P(FisReaderError, NamesFileLineAndField) {
 const std::string kInput2 =
     "[Input2]\nName='stretch'\nRange=[0 10]\nNumMFs=2\nMF1='low':'sigmf',[-1.5 4]\n"
     "MF2='high':'gbellmf',[2 3 8]\n";
+
+// 10001 points: one more than a point list may hold.
+std::string too_many_points() {
+  std::string s = "'discretemf',[";
+  for (std::size_t i = 0; i <= kMaxPoints; ++i)
+    s += std::to_string(i) + " 0.5 ";
+  return s + "]";
+}
 
 const BadFis kBad[] = {
     // Missing sections: named at the count that calls for them.
@@ -189,6 +244,66 @@ const BadFis kBad[] = {
      "[System] Type",
      "type2",
      "Type 'type2' is not supported"},
+    // fuzzylite's discretemf: pairs of finite numbers, x in order, y in [0, 1], not too many.
+    {"DiscretemfOddCount",
+     {{"'trimf',[0.2 0.5 0.8]", "'discretemf',[0.2 0 0.5 1 0.8]"}},
+     "[Input1] MF2",
+     "discretemf",
+     "discretemf takes x y pairs ([x1 y1 x2 y2 ...]), got 5 numbers"},
+    {"DiscretemfEmpty",
+     {{"'trimf',[0.2 0.5 0.8]", "'discretemf',[]"}},
+     "[Input1] MF2",
+     "discretemf",
+     "got 0 numbers"},
+    {"DiscretemfNotFinite",
+     {{"'trimf',[0.2 0.5 0.8]", "'discretemf',[0.2 0 inf 1]"}},
+     "[Input1] MF2",
+     "discretemf",
+     "'inf' is not a finite number"},
+    {"DiscretemfDecreasingX",
+     {{"'trimf',[0.2 0.5 0.8]", "'discretemf',[0.5 0 0.2 1]"}},
+     "[Input1] MF2",
+     "discretemf",
+     "point x values must not decrease"},
+    {"DiscretemfDegreeAboveOne",
+     {{"'trimf',[0.2 0.5 0.8]", "'discretemf',[0.2 0 0.5 1.5]"}},
+     "[Input1] MF2",
+     "discretemf",
+     "membership degrees must be in [0, 1]"},
+    {"DiscretemfTooManyPoints",
+     {{"'trimf',[0.2 0.5 0.8]", too_many_points()}},
+     "[Input1] MF2",
+     "discretemf",
+     "a point list holds at most 10000 points, got 10001"},
+    {"DiscretemfInASugenoOutput",
+     {{"'mamdani'", "'sugeno'"},
+      {"DefuzzMethod='centroid'", "DefuzzMethod='wtaver'"},
+      {"'soft':'trimf',[0 20 50]", "'soft':'discretemf',[0 1 50 0]"}},
+     "[Output1] MF1",
+     "'soft'",
+     "a sugeno output's membership functions are constant or linear, got discretemf"},
+    {"RampmfWithoutASlope",
+     {{"'trimf',[0.2 0.5 0.8]", "'rampmf',[0.5 0.5]"}},
+     "[Input1] MF2",
+     "rampmf",
+     "rampmf needs start != end"},
+    // fuzzylite's hybrid: an output's MFs are all constant/linear or none are,
+    // and DefuzzMethod names the first output's kind.
+    {"HybridOutputMixingKinds",
+     {{"'mamdani'", "'hybrid'"}, {"'firm':'trapmf',[30 60 80 100]", "'firm':'constant',[60]"}},
+     "[Output1] MF2",
+     "'firm'",
+     "this output of a hybrid system is mamdani (its MF1 is neither constant nor linear)"},
+    {"HybridDefuzzMethodNotTheFirstOutputs",
+     {{"'mamdani'", "'hybrid'"}, {"DefuzzMethod='centroid'", "DefuzzMethod='wtaver'"}},
+     "[System] DefuzzMethod",
+     "DefuzzMethod",
+     "a hybrid system's DefuzzMethod is its first output's, and 'stiffness' is mamdani"},
+    {"HybridBisector",
+     {{"'mamdani'", "'hybrid'"}, {"DefuzzMethod='centroid'", "DefuzzMethod='bisector'"}},
+     "[System] DefuzzMethod",
+     "DefuzzMethod",
+     "DefuzzMethod 'bisector' is not supported for hybrid"},
     {"ConstantInAMamdaniOutput",
      {{"'soft':'trimf',[0 20 50]", "'soft':'constant',[20]"}},
      "[Output1] MF1",

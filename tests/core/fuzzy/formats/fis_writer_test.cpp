@@ -62,11 +62,6 @@ TEST(FisWriter, RefusesWhatFisCannotExpress) {
          s.blocks[0].rules[0].condition.children[0] = inner;
        },
        "nests AND, OR or NOT"},
-      {"point list",
-       [](FuzzySystem& s) {
-         s.inputs[0].terms[0].function = {Shape::points, {0, 1, 0.6, 0}};
-       },
-       "point list"},
       {"default value", [](FuzzySystem& s) { s.outputs[0].default_value = 50; }, "DEFAULT 50"},
       {"two rule blocks with different methods",
        [](FuzzySystem& s) {
@@ -97,15 +92,46 @@ TEST(FisWriter, RefusesWhatFisCannotExpress) {
   }
 }
 
-// Mamdani and Sugeno outputs cannot share one [System].
-TEST(FisWriter, RefusesMixedOutputs) {
+// A point list as fuzzylite writes a Discrete term: 'discretemf', its x y
+// pairs in one list; read back to the same term.
+TEST(FisWriter, WritesAPointListAsDiscretemf) {
+  FuzzySystem s = matlab();
+  s.inputs[0].terms[0].function = {Shape::points, {0, 1, 0.2, 1, 0.6, 0}};
+  const std::string text = write_fis(s);
+  EXPECT_NE(text.find("MF1='light':'discretemf',[0 1 0.20000000000000001 1 "
+                      "0.59999999999999998 0]\n"),
+            std::string::npos)
+      << text;
+  const FuzzySystem back = parse_fis(text, "back.fis");
+  EXPECT_EQ(back.inputs[0].terms[0].function.shape, Shape::points);
+  EXPECT_EQ(back.inputs[0].terms[0].function.params, s.inputs[0].terms[0].function.params);
+}
+
+// Mamdani and Sugeno outputs together: fuzzylite's Type='hybrid', whose
+// DefuzzMethod is the first output's.
+TEST(FisWriter, WritesMixedOutputsAsFuzzylitesHybrid) {
+  FuzzySystem s = read_fcl(
+      (fs::path(NEUROCLOTH_TEST_DATA) / "rule_files" / "jfuzzylogic_drape.standard.fcl").string());
+  s.outputs[1].default_value = std::numeric_limits<double>::quiet_NaN();  // .fis has no DEFAULT
+  const std::string text = write_fis(s);
+  EXPECT_NE(text.find("Type='hybrid'\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("DefuzzMethod='wtaver'\n"), std::string::npos) << text;  // damping's
+  const FuzzySystem back = parse_fis(text, "back.fis");
+  EXPECT_EQ(back.outputs[0].method, Defuzzification::weighted_average);
+  EXPECT_EQ(back.outputs[1].method, Defuzzification::centroid);
+}
+
+// fuzzylite_drape's two rule blocks differ in AND and OR, which one
+// [System] cannot say.
+TEST(FisWriter, RefusesRuleBlocksWithDifferentMethods) {
   const FuzzySystem s = read_fcl(
       (fs::path(NEUROCLOTH_TEST_DATA) / "rule_files" / "fuzzylite_drape.standard.fcl").string());
   try {
     write_fis(s);
     FAIL() << "written";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("a .fis system is mamdani or sugeno"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("use different AND/OR/ACT/ACCU methods"),
+              std::string::npos)
         << e.what();
   }
 }
