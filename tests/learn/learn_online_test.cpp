@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "learn/online_adaptation.h"
 #include "support/recorded_reference.h"
@@ -62,13 +63,14 @@ OnlineRun run_online(double k, bool follow) {
 
 // From a spring constant 3x too high the online fit walks to the true one while
 // the reference plays. Each window starts from the recording's state, so the
-// windows' error falls as the weight comes right.
+// windows' error falls as the weight comes right. The bounds are a small
+// margin over what was measured (the same bits in every build; no threads).
 TEST(LearnOnline, TracksTheSpringConstantWhileTheReferencePlays) {
   const OnlineRun r = run_online(100, true);
   EXPECT_EQ(r.updates, 50);
-  EXPECT_EQ(r.followed, 49);  // every window but the first (the recording starts at 5 ms)
-  EXPECT_NEAR(r.k, 100, 5);
-  EXPECT_LT(r.last_rms, 0.5 * r.first_rms);
+  EXPECT_EQ(r.followed, 49);   // every window but the first (the recording starts at 5 ms)
+  EXPECT_NEAR(r.k, 100, 1.7);  // measured 101.60 N/m
+  EXPECT_LT(r.last_rms, 0.18 * r.first_rms);  // measured 0.169 (0.0871 -> 0.0148 mm)
 }
 
 // Without the recording's state (markers) the cloth runs free: the weight
@@ -77,7 +79,7 @@ TEST(LearnOnline, TracksTheSpringConstantWhileTheReferencePlays) {
 TEST(LearnOnline, RunningFreeTheWeightStillComesRight) {
   const OnlineRun r = run_online(100, false);
   EXPECT_EQ(r.followed, 0);
-  EXPECT_NEAR(r.k, 100, 10);
+  EXPECT_NEAR(r.k, 100, 3.3);  // measured 96.755 N/m
 }
 
 TEST(LearnOnline, RefusesAWindowOfNoStepsAndABadRate) {
@@ -114,7 +116,10 @@ TEST(LearnOnline, TheReferencesStateIsTheRecordedOne) {
   }
   FitProblem problem(scene, ref, FitSettings{});
   ClothState s;
-  for (int f : {10, 20, 38}) {  // (from rest the first frames are all acceleration)
+  // The velocities' worst error as a share of the fastest node's speed: from
+  // rest the first frames are all acceleration. Bounds just over the measured
+  // 0.0224, 0.0088 and 0.0077.
+  for (const auto& [f, share] : {std::pair(10, 0.025), std::pair(20, 0.01), std::pair(38, 0.009)}) {
     ASSERT_TRUE(problem.reference_state(ref.frames[f].time, s));
     double worst_p = 0, worst_v = 0, speed = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -123,7 +128,7 @@ TEST(LearnOnline, TheReferencesStateIsTheRecordedOne) {
       speed = std::max(speed, truth[f].velocity(i).norm());
     }
     EXPECT_EQ(worst_p, 0.0) << "frame " << f;
-    EXPECT_LT(worst_v, 0.05 * speed) << "frame " << f;
+    EXPECT_LT(worst_v, share * speed) << "frame " << f;
   }
 }
 

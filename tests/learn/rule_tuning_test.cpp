@@ -116,14 +116,17 @@ TEST(RuleTuning, LeastSquaresRecoversChangedConsequentsExactly) {
   EXPECT_TRUE(problem.shape_parameters().empty());
   const RuleTuningResult r = tune_rules(problem, options(false, true));
   EXPECT_FALSE(r.searched);
-  EXPECT_NEAR(get(r.tuned, "y.b[0]"), 47.5, 1e-9);
-  EXPECT_NEAR(get(r.tuned, "y.c[0]"), 20, 1e-9);
-  EXPECT_NEAR(get(r.tuned, "y.c[1]"), 6.25, 1e-9);
-  EXPECT_NEAR(get(r.tuned, "y.a[0]"), 10, 1e-9);  // unchanged, and not moved
+  // Each bound is a small margin over what was measured (the same bits in
+  // every build). Measured: every value within 5.6e-15, the loss 2.9e-33.
+  const double exact = 5e-14;
+  EXPECT_NEAR(get(r.tuned, "y.b[0]"), 47.5, exact);
+  EXPECT_NEAR(get(r.tuned, "y.c[0]"), 20, exact);
+  EXPECT_NEAR(get(r.tuned, "y.c[1]"), 6.25, exact);
+  EXPECT_NEAR(get(r.tuned, "y.a[0]"), 10, exact);  // unchanged, and not moved
   // z's coefficient is free only in combination with the others: z varies, so it is seen.
-  EXPECT_NEAR(get(r.tuned, "y.c[2]"), 0, 1e-9);
+  EXPECT_NEAR(get(r.tuned, "y.c[2]"), 0, exact);
   EXPECT_GT(r.loss_before, 1e-4);
-  EXPECT_LT(r.loss_after, 1e-20);
+  EXPECT_LT(r.loss_after, 3e-32);
 }
 
 TEST(RuleTuning, RecoversAShiftedInputTerm) {
@@ -134,8 +137,9 @@ TEST(RuleTuning, RecoversAShiftedInputTerm) {
   const RuleTuning problem(small(), e, o);
   const RuleTuningResult r = tune_rules(problem, o);
   EXPECT_TRUE(r.searched);
-  EXPECT_NEAR(get(r.tuned, "x.mid[1]"), 6.5, 0.01) << r.search.message;
-  EXPECT_LT(r.loss_after, 1e-4 * r.loss_before) << r.search.message;
+  // Measured: the peak within 1.7e-10, the loss down to 6.2e-19 of its start.
+  EXPECT_NEAR(get(r.tuned, "x.mid[1]"), 6.5, 1e-9) << r.search.message;
+  EXPECT_LT(r.loss_after, 5e-18 * r.loss_before) << r.search.message;
 }
 
 TEST(RuleTuning, RecoversAMovedMamdaniSet) {
@@ -147,14 +151,15 @@ TEST(RuleTuning, RecoversAMovedMamdaniSet) {
   // combinations of both barely change the centroid. Even alone, a set clipped
   // by its rule (ACT MIN) shows the centroid only through its visible part, so
   // the search stalls with the loss 1e-5 of its start and the corners most of
-  // the way back, not exactly.
+  // the way back, not exactly. Measured: the loss down to 1.40e-5 of its
+  // start, the corners 0.073 and 0.081 short.
   RuleTuningOptions o = options(false, false);
   o.output_sets = true;
   const RuleTuning problem(small(), e, o);
   const RuleTuningResult r = tune_rules(problem, o);
-  EXPECT_LT(r.loss_after, 1e-4 * r.loss_before) << r.search.message;
-  EXPECT_NEAR(get(r.tuned, "s.md[1]"), 5.8, 0.1);
-  EXPECT_NEAR(get(r.tuned, "s.md[2]"), 7.4, 0.1);
+  EXPECT_LT(r.loss_after, 1.5e-5 * r.loss_before) << r.search.message;
+  EXPECT_NEAR(get(r.tuned, "s.md[1]"), 5.8, 0.08);
+  EXPECT_NEAR(get(r.tuned, "s.md[2]"), 7.4, 0.09);
   EXPECT_TRUE(changed_terms(small(), r.tuned).size() >= 1);
 }
 
@@ -167,8 +172,11 @@ TEST(RuleTuning, HybridTunesTermsAndConsequentsTogether) {
   const RuleTuning problem(small(), e, o);
   EXPECT_FALSE(problem.consequent_parameters().empty());
   const RuleTuningResult r = tune_rules(problem, o);
-  EXPECT_LT(r.loss_after, 1e-4 * r.loss_before) << r.search.message;
-  EXPECT_NEAR(get(r.tuned, "y.b[0]"), 55, 0.5);
+  // Measured (the 500 iterations' budget spent): the loss down to 2.8e-10
+  // of its start, the consequent 0.0035 and the peak 4.8e-4 short.
+  EXPECT_LT(r.loss_after, 3e-10 * r.loss_before) << r.search.message;
+  EXPECT_NEAR(get(r.tuned, "y.b[0]"), 55, 0.004);
+  EXPECT_NEAR(get(r.tuned, "x.mid[1]"), 4.0, 6e-4);
 }
 
 // Every tuned term valid and readable: corners in order, inside the range
@@ -208,7 +216,7 @@ TEST(RuleTuning, TermsStayReadableWhenTheExamplesPullThemApart) {
   const FuzzySystem start = small();
   const RuleTuning problem(start, e, o);
   const RuleTuningResult r = tune_rules(problem, o);
-  EXPECT_LT(r.loss_after, r.loss_before);
+  EXPECT_LT(r.loss_after, 2.2e-4 * r.loss_before);  // measured 1.92e-4 (0.278 -> 5.3e-5)
   expect_readable(r.tuned, start, o.min_width);
   ASSERT_FALSE(r.active.empty());
   bool at_end = false;
