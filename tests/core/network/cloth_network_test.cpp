@@ -281,6 +281,25 @@ TEST_P(ClothNetworkKernel, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAn
     EXPECT_EQ(split.at(i), in_float.at(i)) << i;
 }
 
+// The double sweep split over two and three threads (an odd split cuts rows
+// mid-row) gives each node the bits one thread gives: chunks that cross a
+// part's edge are evaluated by both parts, each adding to its own nodes.
+TEST_P(ClothNetworkKernel, NetForcesSplitOverThreadsAreTheOneThreadBits) {
+  Scene scene = resized_grid(test::asset_scene("hanging"), 72);
+  const ClothNetwork net = scene.build_network();
+  const ClothState s = shaken(scene, 9);
+  NodeVectors one(s.size()), split(s.size());
+  ForceInputs in = inputs();
+  net.net_forces(s, in, one);
+  for (int threads : {2, 3}) {
+    OwnedStepThreads team(threads);
+    in.threads = team.get();
+    net.net_forces(s, in, split);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      ASSERT_EQ(split.at(i), one.at(i)) << "node " << i << ", " << threads << " threads";
+  }
+}
+
 TEST_P(ClothNetworkKernel, WeightsArePerSpringAndPerNodeAndWritable) {
   Scene scene = test::asset_scene("hanging");
   ClothNetwork net = scene.build_network();
