@@ -1,10 +1,13 @@
 // Google Benchmark: one step of each integrator on the one step benchmark's
 // cloth (step_bench.h: the default scene's cloth resized to N x N, the cloth
 // and step rule `neurocloth-cli bench` times), and the same cloth read from an
-// OBJ file (the mesh path: its springs in stencil order, stencil_order.h).
+// OBJ file (the mesh path: its springs in stencil order, stencil_order.h),
+// and the network step through each spring kernel (BM_KernelStep).
 // Run with --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 // and quote the medians: this machine is shared and noisy.
 #include <benchmark/benchmark.h>
+
+#include <string>
 
 #include "app/cli/step_bench.h"
 
@@ -13,14 +16,17 @@ namespace {
 
 // Frames of the one rule until the benchmark has timed enough; per spring
 // update and per step, from the steps actually taken.
-void time_steps(benchmark::State& st, const Scene& scene, IntegratorKind kind) {
-  StepBench bench(scene, kind);
+void time_steps(benchmark::State& st, const Scene& scene, IntegratorKind kind,
+                SpringPrecision precision = SpringPrecision::float64,
+                SpringKernel kernel = SpringKernel::automatic) {
+  StepBench bench(scene, kind, 1, precision, kernel);
   long steps = 0;
   for (auto _ : st)
     steps += bench.run(StepBench::kFrameSteps);
   if (bench.simulation().status() != RunStatus::ok) st.SkipWithError("diverged");
   const auto springs = static_cast<double>(bench.springs());
-  st.SetLabel(to_string(kind));
+  st.SetLabel(std::string(to_string(kind)) + ", " + to_string(precision) + " springs, " +
+              to_string(resolved(kernel)) + " kernel");
   st.counters["springs"] = springs;
   st.counters["ns_per_spring"] =
       benchmark::Counter(springs * static_cast<double>(steps) * 1e-9,
@@ -69,6 +75,29 @@ void Args(benchmark::internal::Benchmark* b) {
       b->Args({static_cast<long>(k), n});
 }
 BENCHMARK(BM_Step)->Apply(Args)->Unit(benchmark::kMicrosecond);
+
+// The network step through one spring kernel (spring_kernel.h): range(0) the
+// kernel, range(1) the precision, range(2) N. The AVX-512 kernel is reported
+// as skipped where it is not compiled in. Interleave the two kernels'
+// repetitions (--benchmark_enable_random_interleaving=true) for their ratio.
+void BM_KernelStep(benchmark::State& st) {
+  const auto kernel = static_cast<SpringKernel>(st.range(0));
+  const std::string missing = kernel_unavailable(kernel);
+  if (!missing.empty()) {
+    st.SkipWithError(missing.c_str());
+    return;
+  }
+  time_steps(st, bare_cloth(static_cast<int>(st.range(2))), IntegratorKind::network,
+             static_cast<SpringPrecision>(st.range(1)), kernel);
+}
+
+void KernelArgs(benchmark::internal::Benchmark* b) {
+  for (SpringPrecision p : {SpringPrecision::float64, SpringPrecision::float32})
+    for (int n : {32, 64, 128})
+      for (SpringKernel k : {SpringKernel::portable, SpringKernel::avx512})
+        b->Args({static_cast<long>(k), static_cast<long>(p), n});
+}
+BENCHMARK(BM_KernelStep)->Apply(KernelArgs)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace neurocloth

@@ -34,6 +34,35 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// --kernel NAME as the kernel that will run, or an InputError naming the option.
+SpringKernel bench_kernel_option(const std::string& name) {
+  const auto kernel = parse_kernel(name);
+  if (!kernel)
+    throw InputError(
+        "command line", "--kernel",
+        "unknown spring kernel '" + name + "' (expected one of: " + kKernelNames + ")");
+  const std::string missing = kernel_unavailable(*kernel);
+  if (!missing.empty()) throw InputError("command line", "--kernel", missing);
+  return resolved(*kernel);
+}
+
+// Steps per second of one timed run of `bench`, by the wall clock.
+double timed_rate(StepBench& bench, long steps) {
+  const auto start = std::chrono::steady_clock::now();
+  const long taken = bench.run(steps);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return static_cast<double>(taken) / wall;
+}
+
+// Whether a step timed beside the asked one diverged; says so.
+bool beside_diverged(const std::optional<StepBench>& bench, const char* what) {
+  if (!bench || bench->simulation().status() == RunStatus::ok) return false;
+  std::fprintf(stderr, "bench: the benchmark cloth diverged %s (%s)\n", what,
+               bench->simulation().divergence_reason().c_str());
+  return true;
+}
+
 }  // namespace
 
 int run_bench(const BenchOptions& o) {
@@ -56,25 +85,28 @@ int run_bench(const BenchOptions& o) {
   const std::string conflict = precision_conflict(*kind, precision);
   if (!conflict.empty()) throw InputError("command line", "--precision", conflict);
   const bool in_float = precision == SpringPrecision::float32;
-  StepBench bench(bare_cloth(o.size), *kind, o.threads, precision);
+  const SpringKernel kernel = bench_kernel_option(o.kernel);
+  StepBench bench(bare_cloth(o.size), *kind, o.threads, precision, kernel);
   // The reference loop (step_bench.h), timed in the same runs: the ratio of
   // the two medians says what the step's layout buys under this run's load.
-  // With float, the double step is timed in the same runs too, for the same reason.
+  // With float, the double step is timed in the same runs too, for the same
+  // reason; and with a kernel named, the other kernel where it is compiled in.
   ReferenceStep reference(bench);
-  std::optional<StepBench> in_double;
-  if (in_float) in_double.emplace(bare_cloth(o.size), *kind, o.threads);
+  std::optional<StepBench> in_double, in_other_kernel;
+  if (in_float)
+    in_double.emplace(bare_cloth(o.size), *kind, o.threads, SpringPrecision::float64, kernel);
+  const SpringKernel other_kernel =
+      kernel == SpringKernel::avx512 ? SpringKernel::portable : SpringKernel::avx512;
+  if (o.kernel != to_string(SpringKernel::automatic) && kernel_unavailable(other_kernel).empty())
+    in_other_kernel.emplace(bare_cloth(o.size), *kind, o.threads, precision, other_kernel);
   bench.run(10);  // warm-up: caches, page faults
   reference.run(10);
-  if (in_double) in_double->run(10);
-  std::vector<double> rates, cpu_rates, reference_rates, double_rates;
+  for (auto* beside : {&in_double, &in_other_kernel})
+    if (*beside) (*beside)->run(10);
+  std::vector<double> rates, cpu_rates, reference_rates, double_rates, other_kernel_rates;
   for (int r = 0; r < o.repeat; ++r) {
-    if (in_double) {
-      const auto start = std::chrono::steady_clock::now();
-      const long taken = in_double->run(o.steps);
-      const double wall =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      double_rates.push_back(static_cast<double>(taken) / wall);
-    }
+    if (in_double) double_rates.push_back(timed_rate(*in_double, o.steps));
+    if (in_other_kernel) other_kernel_rates.push_back(timed_rate(*in_other_kernel, o.steps));
     auto start = std::chrono::steady_clock::now();
     const double cpu_start = thread_cpu_seconds();
     const long taken = bench.run(o.steps);
@@ -99,11 +131,11 @@ int run_bench(const BenchOptions& o) {
   const double reference_ns = 1e9 / (median(reference_rates) * springs);
   const double cpu_ns = 1e9 / (median(cpu_rates) * springs);
   const double double_ns = in_double ? 1e9 / (median(double_rates) * springs) : ns;
-  if (in_double && in_double->simulation().status() != RunStatus::ok) {
-    std::fprintf(stderr, "bench: the benchmark cloth diverged in double (%s)\n",
-                 in_double->simulation().divergence_reason().c_str());
+  const double other_kernel_ns =
+      in_other_kernel ? 1e9 / (median(other_kernel_rates) * springs) : ns;
+  if (beside_diverged(in_double, "in double") ||
+      beside_diverged(in_other_kernel, "under the other kernel"))
     return kExitDiverged;
-  }
   if (o.json) {
     nlohmann::json doc = {{"size", o.size},
                           {"nodes", sim.network().node_count()},
@@ -111,6 +143,7 @@ int run_bench(const BenchOptions& o) {
                           {"integrator", o.integrator},
                           {"threads", o.threads},
                           {"precision", to_string(precision)},
+                          {"kernel", to_string(kernel)},
                           {"dt", bench.dt()},
                           {"steps", o.steps},
                           {"repeat", o.repeat},
@@ -125,12 +158,18 @@ int run_bench(const BenchOptions& o) {
       doc["double_ns_per_spring_update"] = double_ns;
       doc["double_over_float"] = double_ns / ns;
     }
+    if (in_other_kernel) {
+      doc["other_kernel"] = to_string(other_kernel);
+      doc["other_kernel_ns_per_spring_update"] = other_kernel_ns;
+      doc["other_kernel_over_this"] = other_kernel_ns / ns;
+    }
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
-    std::printf("%dx%d cloth, %zu nodes, %zu springs, %s, %s springs, dt %.3g s, %d thread%s\n",
-                o.size, o.size, sim.network().node_count(), sim.network().spring_count(),
-                o.integrator.c_str(), to_string(precision), bench.dt(), o.threads,
-                o.threads == 1 ? "" : "s");
+    std::printf(
+        "%dx%d cloth, %zu nodes, %zu springs, %s, %s springs, %s kernel, dt %.3g s, %d thread%s\n",
+        o.size, o.size, sim.network().node_count(), sim.network().spring_count(),
+        o.integrator.c_str(), to_string(precision), to_string(kernel), bench.dt(), o.threads,
+        o.threads == 1 ? "" : "s");
     std::printf("  median of %d runs of %d steps: %.1f steps/s, %.3f ns per spring update\n",
                 o.repeat, o.steps, sps, ns);
     std::printf("  CPU time of the calling thread: %.3f ns per spring update\n", cpu_ns);
@@ -141,6 +180,9 @@ int run_bench(const BenchOptions& o) {
       std::printf(
           "  double springs, same runs: %.3f ns per spring update (%.2fx the float step's)\n",
           double_ns, double_ns / ns);
+    if (in_other_kernel)
+      std::printf("  %s kernel, same runs: %.3f ns per spring update (%.2fx this kernel's)\n",
+                  to_string(other_kernel), other_kernel_ns, other_kernel_ns / ns);
   }
   return kExitOk;
 }

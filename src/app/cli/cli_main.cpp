@@ -118,6 +118,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--precision", bench.precision,
                         "double (default), or float: the float spring layer timed beside the "
                         "double one in the same runs");
+  bench_cmd->add_option("--kernel", bench.kernel,
+                        "Spring kernel: auto (default; avx512 where compiled in), portable or "
+                        "avx512; one named is timed beside the other in the same runs");
   bench_cmd->add_flag("--json", bench.json, "Print JSON");
 
   MaterialOptions mat;

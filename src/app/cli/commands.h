@@ -102,6 +102,10 @@ struct BenchOptions {
   // "double", or "float": the float step timed beside the double one in the
   // same runs (SolverSettings::precision).
   std::string precision = "double";
+  // "auto" (the default: AVX-512 where compiled in), "portable" or "avx512"
+  // (SolverSettings::kernel). A kernel named where both are compiled in is
+  // timed beside the other one in the same runs.
+  std::string kernel = "auto";
   bool json = false;
 };
 int run_bench(const BenchOptions& options);

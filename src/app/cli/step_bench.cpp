@@ -87,17 +87,19 @@ Scene bare_shuffled_mesh_cloth(int n) {
 }
 
 namespace {
-Scene with_threads(Scene scene, int threads, SpringPrecision precision) {
+Scene with_solver_choices(Scene scene, int threads, SpringPrecision precision,
+                          SpringKernel kernel) {
   scene.solver.threads = threads;
   scene.solver.precision = precision;
+  scene.solver.kernel = kernel;
   return scene;
 }
 }  // namespace
 
 StepBench::StepBench(const Scene& scene, IntegratorKind integrator, int threads,
-                     SpringPrecision precision)
-    : sim_(with_threads(with_bench_step(scene, integrator), threads, precision).make_simulation()) {
-}
+                     SpringPrecision precision, SpringKernel kernel)
+    : sim_(with_solver_choices(with_bench_step(scene, integrator), threads, precision, kernel)
+               .make_simulation()) {}
 
 long StepBench::run(long steps) {
   const long before = sim_.steps();

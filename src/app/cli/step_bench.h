@@ -34,9 +34,12 @@ Scene bare_shuffled_mesh_cloth(int n);
 class StepBench {
  public:
   // `threads` share each sweep (SolverSettings::threads; the results do not
-  // depend on it); `precision` is the spring layer's arithmetic.
+  // depend on it); `precision` is the spring layer's arithmetic and `kernel`
+  // the code that evaluates it (refused, std::invalid_argument, where it is
+  // not compiled in).
   StepBench(const Scene& scene, IntegratorKind integrator, int threads = 1,
-            SpringPrecision precision = SpringPrecision::float64);
+            SpringPrecision precision = SpringPrecision::float64,
+            SpringKernel kernel = SpringKernel::automatic);
   // Takes about `steps` steps and returns how many it took.
   long run(long steps);
   static constexpr long kFrameSteps = 16;

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/network/reciprocal_sqrt.h"
 #include "core/network/spring_chunk_avx512.h"
 #include "core/network/spring_chunks.h"
+#include "core/network/spring_kernel.h"
 
 namespace neurocloth {
 
@@ -89,11 +91,14 @@ using namespace spring_chunks;
 // Direct == false: store them in fx, fy, fz for accumulate_chunk.
 // T is the force neurons' arithmetic (SpringPrecision): with float, the ends'
 // differences are rounded to float and the outputs widened back to double.
-template <SpringFunctionKind K, bool Direct, typename T>
+// Hand: the same chunk through the AVX-512 kernel (SpringKernel::avx512);
+// instantiated only where it is compiled in.
+template <SpringFunctionKind K, bool Direct, typename T, bool Hand>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
+  static_assert(!Hand || kHandVectorised, "the AVX-512 kernel is not compiled in");
 #if defined(NEUROCLOTH_HAND_VECTORISED)
-  if constexpr (kHandVectorised) {
+  if constexpr (Hand) {
     propagate_chunk_avx512<K, Direct, T>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
     return;
   }
@@ -161,7 +166,7 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
 // chunk wholly inside adds its outputs directly (or through accumulate_chunk);
 // a chunk that crosses lo or hi is evaluated by every part it touches, and
 // each adds only to its own nodes (step_threads.h).
-template <SpringFunctionKind K, typename T>
+template <SpringFunctionKind K, typename T, bool Hand>
 void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F, std::int32_t lo,
                     std::int32_t hi) {
   Chunk chunk;
@@ -171,8 +176,8 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     const bool a_inside = a >= lo && a + count <= hi;
     const bool b_inside = b >= lo && b + count <= hi;
     if (direct && a_inside && b_inside) {
-      propagate_chunk<K, true, T>(net.springs, first, count, a, b, s, F.x.data() + a,
-                                  F.y.data() + a, F.z.data() + a);
+      propagate_chunk<K, true, T, Hand>(net.springs, first, count, a, b, s, F.x.data() + a,
+                                        F.y.data() + a, F.z.data() + a);
       return;
     }
     const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
@@ -180,28 +185,57 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
 #if defined(NEUROCLOTH_HAND_VECTORISED)
     // A row's neighbours inside this part: summed in registers (same bits).
     const std::int32_t o = b - a;
-    if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
-      if (o == 1)
-        propagate_row_avx512<K, T, 1>(net.springs, first, count, a, s, kMinSpringLength,
-                                      F.x.data() + a, F.y.data() + a, F.z.data() + a);
-      else
-        propagate_row_avx512<K, T, 2>(net.springs, first, count, a, s, kMinSpringLength,
-                                      F.x.data() + a, F.y.data() + a, F.z.data() + a);
-      return;
+    if constexpr (Hand) {
+      if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
+        if (o == 1)
+          propagate_row_avx512<K, T, 1>(net.springs, first, count, a, s, kMinSpringLength,
+                                        F.x.data() + a, F.y.data() + a, F.z.data() + a);
+        else
+          propagate_row_avx512<K, T, 2>(net.springs, first, count, a, s, kMinSpringLength,
+                                        F.x.data() + a, F.y.data() + a, F.z.data() + a);
+        return;
+      }
     }
 #endif
-    propagate_chunk<K, false, T>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy, chunk.fz);
+    propagate_chunk<K, false, T, Hand>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy,
+                                       chunk.fz);
     accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
   });
 }
 
-template <SpringFunctionKind K, typename T>
+template <SpringFunctionKind K, typename T, bool Hand>
 void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations& act) {
   for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
                                   std::int32_t b, bool) {
-    propagate_chunk<K, false, T>(net.springs, first, count, a, b, s, act.fx.data() + first,
-                                 act.fy.data() + first, act.fz.data() + first);
+    propagate_chunk<K, false, T, Hand>(net.springs, first, count, a, b, s, act.fx.data() + first,
+                                       act.fy.data() + first, act.fz.data() + first);
   });
+}
+
+// Calls fn(K, T, Hand) with the instantiation of the sweep that evaluates
+// springs of `kind` in `precision` with `kernel`: K and Hand as
+// std::integral_constant, T as a value of the arithmetic's type. Throws (before
+// any work) when `kernel` is not compiled in (spring_kernel.h).
+template <typename Fn>
+void with_spring_sweep(SpringFunctionKind kind, SpringPrecision precision, SpringKernel kernel,
+                       Fn&& fn) {
+  [[maybe_unused]] const bool hand = resolved(kernel) == SpringKernel::avx512;
+  const auto by_kernel = [&](auto k, auto t) {
+    if constexpr (kHandVectorised) {
+      if (hand) return fn(k, t, std::true_type{});
+    }
+    fn(k, t, std::false_type{});
+  };
+  const auto by_precision = [&](auto k) {
+    if (precision == SpringPrecision::float32)
+      by_kernel(k, float{});
+    else
+      by_kernel(k, double{});
+  };
+  if (kind == SpringFunctionKind::linear)
+    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::linear>{});
+  else
+    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::stiffening>{});
 }
 
 }  // namespace
@@ -228,20 +262,12 @@ void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F, std::si
 }
 
 void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
-  const bool linear = springs.function.kind == SpringFunctionKind::linear;
-  for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
-    external_force(in, F, lo, hi);
-    const auto first = static_cast<std::int32_t>(lo), last = static_cast<std::int32_t>(hi);
-    if (in.precision == SpringPrecision::float32) {
-      if (linear)
-        propagate_part<SpringFunctionKind::linear, float>(*this, s, F, first, last);
-      else
-        propagate_part<SpringFunctionKind::stiffening, float>(*this, s, F, first, last);
-    } else if (linear) {
-      propagate_part<SpringFunctionKind::linear, double>(*this, s, F, first, last);
-    } else {
-      propagate_part<SpringFunctionKind::stiffening, double>(*this, s, F, first, last);
-    }
+  with_spring_sweep(springs.function.kind, in.precision, in.kernel, [&](auto k, auto t, auto hand) {
+    for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+      external_force(in, F, lo, hi);
+      propagate_part<decltype(k)::value, decltype(t), decltype(hand)::value>(
+          *this, s, F, static_cast<std::int32_t>(lo), static_cast<std::int32_t>(hi));
+    });
   });
   // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);
@@ -280,19 +306,11 @@ int ClothNetwork::degenerate_springs(const ClothState& s) const {
 }
 
 void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act,
-                                  SpringPrecision precision) const {
-  act.resize(spring_count());
-  const bool linear = springs.function.kind == SpringFunctionKind::linear;
-  if (precision == SpringPrecision::float32) {
-    if (linear)
-      outputs_all<SpringFunctionKind::linear, float>(*this, s, act);
-    else
-      outputs_all<SpringFunctionKind::stiffening, float>(*this, s, act);
-  } else if (linear) {
-    outputs_all<SpringFunctionKind::linear, double>(*this, s, act);
-  } else {
-    outputs_all<SpringFunctionKind::stiffening, double>(*this, s, act);
-  }
+                                  SpringPrecision precision, SpringKernel kernel) const {
+  with_spring_sweep(springs.function.kind, precision, kernel, [&](auto k, auto t, auto hand) {
+    act.resize(spring_count());
+    outputs_all<decltype(k)::value, decltype(t), decltype(hand)::value>(*this, s, act);
+  });
 }
 
 void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {

@@ -17,6 +17,7 @@
 #include "core/network/mass_layer.h"
 #include "core/network/material.h"
 #include "core/network/scene_module.h"
+#include "core/network/spring_kernel.h"
 #include "core/network/spring_layer.h"
 
 namespace neurocloth {
@@ -86,7 +87,8 @@ class ClothNetwork {
   // force modules add. Allocates nothing.
   // A spring shorter than kMinSpringLength contributes no force (no direction).
   // The springs' sweep is split over inputs.threads when it is set (the same
-  // bits as on one thread, step_threads.h).
+  // bits as on one thread, step_threads.h). Throws std::invalid_argument, before
+  // any work, when inputs.kernel is not compiled in (spring_kernel.h).
   void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // The same with no external force, at time 0.
   void net_forces(const ClothState& state, NodeVectors& force) const;
@@ -96,9 +98,10 @@ class ClothNetwork {
   // How many springs are that short at `state` (a diagnostic, off the hot path).
   int degenerate_springs(const ClothState& state) const;
   // The force neurons' outputs themselves, one per spring (for inspection and
-  // learning), in the arithmetic net_forces uses at `precision`.
+  // learning), in the arithmetic net_forces uses at `precision`, by `kernel`.
   void spring_outputs(const ClothState& state, SpringActivations& act,
-                      SpringPrecision precision = SpringPrecision::float64) const;
+                      SpringPrecision precision = SpringPrecision::float64,
+                      SpringKernel kernel = SpringKernel::automatic) const;
   // a_j = free_j * (F_j / m_j + g): what the velocity neuron integrates.
   void accelerations(const NodeVectors& force, NodeVectors& acc) const;
   // Largest |F_j + m_j g| over free nodes: the paper's "max sum f_i" (Table 1).

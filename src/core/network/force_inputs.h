@@ -10,6 +10,7 @@
 #include "core/base/step_threads.h"
 #include "core/network/cloth_state.h"
 #include "core/network/module_clock.h"
+#include "core/network/spring_kernel.h"
 #include "core/network/spring_precision.h"
 
 namespace neurocloth {
@@ -30,6 +31,9 @@ struct ForceInputs {
   // The force neurons' arithmetic (SolverSettings::precision); a simulation
   // sets it from its settings.
   SpringPrecision precision = SpringPrecision::float64;
+  // The code that evaluates them (SolverSettings::kernel; spring_kernel.h):
+  // the same forces to round-off, other last bits.
+  SpringKernel kernel = SpringKernel::automatic;
 };
 
 }  // namespace neurocloth

@@ -9,8 +9,12 @@
 // Deterministic for a build and a CPU: vrsqrt14pd is a table lookup, and the
 // tail is the same instructions under a mask, so every spring sees the same
 // operations whatever its place in a chunk or a thread's part. The bits
-// differ from the portable loop's in the last place (tested against it in
-// spring_chunk_test.cpp). Internal to the core.
+// differ from the portable loop's in the last place: runs through the two
+// kernels are compared in spring_kernel_test.cpp, and each kernel's forces
+// against the textbook formula in cloth_network_test.cpp (ClothNetworkKernel).
+// Compiled in only where the compiler targets AVX-512; which kernel runs is
+// chosen per evaluation (ForceInputs::kernel, spring_kernel.h). Internal to
+// the core.
 //
 // FloatForces8 is the same in float (SpringPrecision::float32). Both need
 // AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512

@@ -50,6 +50,13 @@ void check_weights(const ClothNetwork& net) {
   if (!net.gravity.allFinite()) refuse("gravity", 0, "finite", net.gravity.norm());
 }
 
+// The settings a force evaluation reads from ForceInputs: the spring layer's
+// arithmetic and the kernel that evaluates it.
+void set_spring_arithmetic(ForceInputs& in, const SolverSettings& s) {
+  in.precision = s.precision;
+  in.kernel = s.kernel;
+}
+
 const SolverSettings& validated(const SolverSettings& s) {
   validate(s);
   return s;
@@ -96,7 +103,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
   run_.checkpoint.state = initial;
   run_.monitor = DivergenceMonitor(net_, initial, settings_.divergence);
   run_.inputs.clocks.resize(net_.force_modules.size());
-  run_.inputs.precision = settings_.precision;
+  set_spring_arithmetic(run_.inputs, settings_);
   for (const auto& c : constraints_)
     run_.module_states.push_back(c->make_state());
 
@@ -146,7 +153,7 @@ void Simulation::set_state(const ClothState& s) {
   invalidate(Stale::forces);
 }
 
-// The context half of ForceInputs (clocks, threads, precision) belongs to this
+// The context half of ForceInputs (clocks, threads, precision, kernel) belongs to this
 // simulation, not to the saved run: it is kept across the copy.
 void Simulation::restore(const SimulationState& s) {
   check_fits(s, net_.node_count(), constraints_.size());
@@ -155,7 +162,7 @@ void Simulation::restore(const SimulationState& s) {
   run_ = s;
   run_.inputs.clocks = std::move(clocks);
   run_.inputs.threads = threads;
-  run_.inputs.precision = settings_.precision;
+  set_spring_arithmetic(run_.inputs, settings_);
   invalidate(Stale::weights);
 }
 
@@ -166,7 +173,7 @@ void Simulation::set_solver_settings(const SolverSettings& settings) {
       make_integrator(settings.integrator, net_, settings.adaptive_settings.min_step_fraction,
                       settings.iterations, settings.linear_tolerance);
   settings_ = settings;
-  run_.inputs.precision = settings_.precision;
+  set_spring_arithmetic(run_.inputs, settings_);
   if (ctx_.threads.size() != settings_.threads) ctx_.threads = OwnedStepThreads(settings_.threads);
   integrator_ = std::move(integrator);
   ctx_.step_start.resize(

@@ -12,6 +12,7 @@
 #include "core/integrators/integrator.h"
 #include "core/integrators/step_controller.h"
 #include "core/io/physical_limits.h"
+#include "core/network/spring_kernel.h"
 #include "core/network/spring_precision.h"
 
 namespace neurocloth {
@@ -75,6 +76,11 @@ struct SolverSettings {
   // measured error. Explicit integrators only: the implicit ones linearise the
   // same springs in double, and learning differentiates the double step.
   SpringPrecision precision = SpringPrecision::float64;
+  // Which code evaluates those force neurons (spring_kernel.h): automatic (the
+  // AVX-512 kernel where it is compiled in), or one named, so that a test or a
+  // benchmark runs the portable kernel on an AVX-512 machine too. Not a scene
+  // field: a scene's results do not depend on it beyond the last bits.
+  SpringKernel kernel = SpringKernel::automatic;
 };
 
 // Why `precision` cannot go with `integrator`, or "" when it can. The implicit
@@ -131,6 +137,11 @@ inline void validate(const SolverSettings& s) {
     fail("precision", std::string("one of ") + kPrecisionNames, static_cast<double>(s.precision));
   const std::string conflict = precision_conflict(s.integrator, s.precision);
   if (!conflict.empty()) throw std::invalid_argument("solver.precision " + conflict);
+  if (s.kernel != SpringKernel::automatic && s.kernel != SpringKernel::portable &&
+      s.kernel != SpringKernel::avx512)
+    fail("kernel", std::string("one of ") + kKernelNames, static_cast<double>(s.kernel));
+  const std::string missing = kernel_unavailable(s.kernel);
+  if (!missing.empty()) throw std::invalid_argument("solver.kernel avx512: " + missing);
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "core/network/spring_kernel.h"
 #include "core/scene/grid_builder.h"
 #include "core/scene/mesh_node_order.h"
 #include "core/scene/obj_mesh_writer.h"
@@ -389,6 +390,32 @@ TEST_F(Cli, BenchPrintsJson) {
   EXPECT_TRUE(std::isfinite(ns));
   // The two rates describe the same timing.
   EXPECT_NEAR(ns, 1e9 / (sps * 306), 1e-6 * ns);
+}
+
+// --kernel picks the spring kernel (spring_kernel.h); one named is timed
+// beside the other where both are compiled in. An unknown name, or avx512
+// where it is not compiled in, is refused naming the option.
+TEST_F(Cli, BenchTimesTheNamedKernelBesideTheOther) {
+  const Outcome r = run(
+      {"bench", "--size", "8", "--steps", "5", "--repeat", "1", "--kernel", "portable", "--json"});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  json doc;
+  ASSERT_NO_THROW(doc = json::parse(r.out)) << r.out;
+  EXPECT_EQ(doc.at("kernel"), "portable");
+  if (avx512_kernel_compiled()) {
+    EXPECT_EQ(doc.at("other_kernel"), "avx512");
+    EXPECT_GT(doc.at("other_kernel_ns_per_spring_update").get<double>(), 0.0);
+  } else {
+    EXPECT_FALSE(doc.contains("other_kernel"));
+  }
+  std::vector<std::string> refused = {"avx-512"};
+  if (!avx512_kernel_compiled()) refused.push_back("avx512");
+  for (const std::string& name : refused) {
+    const Outcome bad =
+        run({"bench", "--size", "8", "--steps", "5", "--repeat", "1", "--kernel", name});
+    EXPECT_EQ(bad.code, kInputError) << name;
+    EXPECT_NE(bad.err.find("--kernel"), std::string::npos) << bad.err;
+  }
 }
 
 TEST_F(Cli, BenchRejectsTinySize) {

@@ -1,16 +1,28 @@
-// The spring and mass layers against hand-computed forces and energies.
+// The spring and mass layers against hand-computed forces and energies. Every
+// test that evaluates the force neurons runs through each spring kernel
+// (spring_kernel.h): the portable one on every build, the AVX-512 one where it
+// is compiled in (skipped elsewhere), so the loop a machine without AVX-512
+// runs is tested on one with it too.
 #include "core/network/cloth_network.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "core/base/step_threads.h"
 #include "core/scene/grid_builder.h"
 #include "support/test_support.h"
 
 namespace neurocloth {
+
+// Test names and failures say the kernel by name.
+void PrintTo(SpringKernel kernel, std::ostream* os) {
+  *os << to_string(kernel);
+}
+
 namespace {
 
 // Two free nodes, one spring, no gravity: a network small enough to check by hand.
@@ -27,21 +39,42 @@ ClothNetwork two_nodes(double k, double d, double rest) {
   return net;
 }
 
-TEST(ClothNetwork, LinearSpringForceByHand) {
+class ClothNetworkKernel : public ::testing::TestWithParam<SpringKernel> {
+ protected:
+  void SetUp() override {
+    const std::string missing = kernel_unavailable(GetParam());
+    if (!missing.empty()) GTEST_SKIP() << missing;
+  }
+  SpringKernel kernel() const { return GetParam(); }
+  // No external force, at time 0 (what net_forces(state, force) reads), by this kernel.
+  ForceInputs inputs() const {
+    ForceInputs in;
+    in.kernel = kernel();
+    return in;
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, ClothNetworkKernel,
+                         ::testing::Values(SpringKernel::portable, SpringKernel::avx512),
+                         [](const ::testing::TestParamInfo<SpringKernel>& info) {
+                           return std::string(to_string(info.param));
+                         });
+
+TEST_P(ClothNetworkKernel, LinearSpringForceByHand) {
   // Rest length 1, stretched to |(2, 1, 2)| = 3: elongation 2, force k * 2 = 20 N
   // along (2, 1, 2) / 3 on node 0, the opposite on node 1.
   const ClothNetwork net = two_nodes(10.0, 0.0, 1.0);
   ClothState s(2);
   s.set_position(1, Vec3(2, 1, 2));
   NodeVectors F(2);
-  net.net_forces(s, F);
+  net.net_forces(s, inputs(), F);
   EXPECT_NEAR(F.at(0).x(), 20.0 * 2 / 3, 1e-13);
   EXPECT_NEAR(F.at(0).y(), 20.0 * 1 / 3, 1e-13);
   EXPECT_NEAR(F.at(0).z(), 20.0 * 2 / 3, 1e-13);
   EXPECT_NEAR((F.at(0) + F.at(1)).norm(), 0.0, 1e-14);
 }
 
-TEST(ClothNetwork, DampingActsAlongTheSpringOnly) {
+TEST_P(ClothNetworkKernel, DampingActsAlongTheSpringOnly) {
   // Spring along x at rest; node 1 moves with (3, 4, 0): only the 3 m/s along the
   // spring is damped, force on node 0 = d * 3 = 6 N along +x.
   const ClothNetwork net = two_nodes(10.0, 2.0, 1.0);
@@ -49,18 +82,18 @@ TEST(ClothNetwork, DampingActsAlongTheSpringOnly) {
   s.set_position(1, Vec3(1, 0, 0));
   s.set_velocity(1, Vec3(3, 4, 0));
   NodeVectors F(2);
-  net.net_forces(s, F);
+  net.net_forces(s, inputs(), F);
   EXPECT_NEAR(F.at(0).x(), 6.0, 1e-13);
   EXPECT_NEAR(F.at(0).y(), 0.0, 1e-13);
   EXPECT_NEAR(F.at(1).x(), -6.0, 1e-13);
 }
 
-TEST(ClothNetwork, ZeroLengthSpringIsSkippedNotDividedBy) {
+TEST_P(ClothNetworkKernel, ZeroLengthSpringIsSkippedNotDividedBy) {
   const ClothNetwork net = two_nodes(10.0, 1.0, 1.0);
   ClothState s(2);  // both nodes at the origin: the spring has no direction
   s.set_velocity(1, Vec3(1, 2, 3));
   NodeVectors F(2);
-  net.net_forces(s, F);
+  net.net_forces(s, inputs(), F);
   EXPECT_TRUE(F.at(0).allFinite());
   EXPECT_EQ(F.at(0), Vec3::Zero());
   EXPECT_EQ(F.at(1), Vec3::Zero());
@@ -68,14 +101,14 @@ TEST(ClothNetwork, ZeroLengthSpringIsSkippedNotDividedBy) {
   EXPECT_TRUE(std::isfinite(net.energy(s).total()));
 }
 
-TEST(ClothNetwork, StiffeningSpringForceIsMinusEnergyGradient) {
+TEST_P(ClothNetworkKernel, StiffeningSpringForceIsMinusEnergyGradient) {
   ClothNetwork net = two_nodes(100.0, 0.0, 1.0);
   net.springs.function = {SpringFunctionKind::stiffening, 0.1, 10.0};
   for (double len : {0.7, 1.05, 1.1 + 1e-3, 1.3, 2.0}) {
     ClothState s(2);
     s.set_position(1, Vec3(len, 0, 0));
     NodeVectors F(2);
-    net.net_forces(s, F);
+    net.net_forces(s, inputs(), F);
     const double h = 1e-6;
     ClothState sp = s, sm = s;
     sp.x[1] += h;
@@ -88,21 +121,21 @@ TEST(ClothNetwork, StiffeningSpringForceIsMinusEnergyGradient) {
   ClothState s(2);
   s.set_position(1, Vec3(1.3, 0, 0));
   NodeVectors F(2);
-  net.net_forces(s, F);
+  net.net_forces(s, inputs(), F);
   EXPECT_NEAR(F.at(0).x(), 210.0, 1e-9);
 }
 
-TEST(ClothNetwork, ExternalForceAndGravityReachTheAcceleration) {
+TEST_P(ClothNetworkKernel, ExternalForceAndGravityReachTheAcceleration) {
   ClothNetwork net = two_nodes(0.0, 0.0, 1.0);
   net.gravity = Vec3(0, -10, 0);
-  ForceInputs inputs;
-  inputs.external_force.resize(2);
-  inputs.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
+  ForceInputs in = inputs();
+  in.external_force.resize(2);
+  in.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
   net.set_pinned(0, true);
   ClothState s(2);
   s.set_position(1, Vec3(1, 0, 0));
   NodeVectors F(2), a(2);
-  net.net_forces(s, inputs, F);
+  net.net_forces(s, in, F);
   net.accelerations(F, a);
   EXPECT_EQ(a.at(0), Vec3::Zero());  // pinned
   EXPECT_NEAR(a.at(1).x(), 6.0, 1e-14);
@@ -124,14 +157,14 @@ ClothState shaken(const Scene& scene, unsigned seed) {
   return s;
 }
 
-TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
+TEST_P(ClothNetworkKernel, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
   // Newton's third law through the +-1 incidence weights, on a real cloth in a
   // random configuration (exercises both the direct and the two-pass chunks).
   Scene scene = test::asset_scene("free_cloth");
   const ClothNetwork net = scene.build_network();
   const ClothState s = shaken(scene, 7);
   NodeVectors F(s.size());
-  net.net_forces(s, F);
+  net.net_forces(s, inputs(), F);
   Vec3 sum = Vec3::Zero();
   double scale = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -142,7 +175,7 @@ TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
 
   // The same forces, summed by hand from the per-spring outputs.
   SpringActivations act;
-  net.spring_outputs(s, act);
+  net.spring_outputs(s, act, SpringPrecision::float64, kernel());
   std::vector<Vec3> by_hand(s.size(), Vec3::Zero());
   for (std::size_t k = 0; k < net.spring_count(); ++k) {
     const Vec3 f(act.fx[k], act.fy[k], act.fz[k]);
@@ -158,7 +191,7 @@ TEST(ClothNetwork, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
 // part-filled vectors (rows of 7 and 6 springs, as chunk tails leave them),
 // linear and stiffening, with one spring of zero length (no direction: no
 // force). Each term of a force may be off by `ulps` of its own size.
-void expect_textbook_spring_outputs(SpringPrecision precision, double ulps) {
+void expect_textbook_spring_outputs(SpringPrecision precision, SpringKernel kernel, double ulps) {
   for (const SpringFunctionKind kind :
        {SpringFunctionKind::linear, SpringFunctionKind::stiffening}) {
     Scene scene = test::asset_scene("free_cloth");
@@ -168,7 +201,7 @@ void expect_textbook_spring_outputs(SpringPrecision precision, double ulps) {
     const int a0 = net.springs.node_a[3], b0 = net.springs.node_b[3];
     s.set_position(b0, s.position(a0));
     SpringActivations act;
-    net.spring_outputs(s, act, precision);
+    net.spring_outputs(s, act, precision, kernel);
     int springs_with_direction = 0;
     for (std::size_t k = 0; k < net.spring_count(); ++k) {
       const int a = net.springs.node_a[k], b = net.springs.node_b[k];
@@ -196,8 +229,8 @@ void expect_textbook_spring_outputs(SpringPrecision precision, double ulps) {
 // The step's 1/len (reciprocal_sqrt.h, or the hand-vectorised estimate plus
 // Newton steps) must be round-off: a few ulp of each term, and one Newton
 // step fewer fails by 1e-9.
-TEST(ClothNetwork, EverySpringOutputIsTheTextbookForceToRoundOff) {
-  expect_textbook_spring_outputs(SpringPrecision::float64, 1e-14);
+TEST_P(ClothNetworkKernel, EverySpringOutputIsTheTextbookForceToRoundOff) {
+  expect_textbook_spring_outputs(SpringPrecision::float64, kernel(), 1e-14);
 }
 
 // float's unit round-off is 2^-24; its epsilon 2^-23.
@@ -208,24 +241,24 @@ constexpr double kFloatEpsilon = 1.1920928955078125e-7;
 // every term is off by a few float ulp of its own size: 8 epsilon. One Newton
 // step fewer on vrsqrt14ps (2^-14) or the portable seed's (5e-6 after two)
 // fails it.
-TEST(ClothNetwork, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
-  expect_textbook_spring_outputs(SpringPrecision::float32, 8 * kFloatEpsilon);
+TEST_P(ClothNetworkKernel, EverySpringOutputInFloatIsTheForceToFloatRoundOff) {
+  expect_textbook_spring_outputs(SpringPrecision::float32, kernel(), 8 * kFloatEpsilon);
 }
 
 // The step's own sweep in float (direct chunks, rows summed in registers,
 // chunks through accumulate_chunk, on one thread and split over two) against
 // double, node by node: each node's sum is off by at most its springs' float
 // round-off (the test above), and the split gives the same bits as one thread.
-TEST(ClothNetwork, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAnyThreads) {
+TEST_P(ClothNetworkKernel, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAnyThreads) {
   // Large enough that two threads split the sweep (kMinThreadedNodes).
   Scene scene = resized_grid(test::asset_scene("hanging"), 72);
   const ClothNetwork net = scene.build_network();
   const ClothState s = shaken(scene, 5);
   NodeVectors in_double(s.size()), in_float(s.size()), split(s.size());
-  net.net_forces(s, in_double);
-  ForceInputs inputs;
-  inputs.precision = SpringPrecision::float32;
-  net.net_forces(s, inputs, in_float);
+  ForceInputs in = inputs();
+  net.net_forces(s, in, in_double);
+  in.precision = SpringPrecision::float32;
+  net.net_forces(s, in, in_float);
   std::vector<double> bound(s.size(), 0.0);
   for (std::size_t k = 0; k < net.spring_count(); ++k) {
     const int a = net.springs.node_a[k], b = net.springs.node_b[k];
@@ -242,13 +275,32 @@ TEST(ClothNetwork, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAnyThreads
   }
   EXPECT_TRUE(differs) << "the float path computed in double";
   OwnedStepThreads two(2);
-  inputs.threads = two.get();
-  net.net_forces(s, inputs, split);
+  in.threads = two.get();
+  net.net_forces(s, in, split);
   for (std::size_t i = 0; i < s.size(); ++i)
     EXPECT_EQ(split.at(i), in_float.at(i)) << i;
 }
 
-TEST(ClothNetwork, WeightsArePerSpringAndPerNodeAndWritable) {
+// The double sweep split over two and three threads (an odd split cuts rows
+// mid-row) gives each node the bits one thread gives: chunks that cross a
+// part's edge are evaluated by both parts, each adding to its own nodes.
+TEST_P(ClothNetworkKernel, NetForcesSplitOverThreadsAreTheOneThreadBits) {
+  Scene scene = resized_grid(test::asset_scene("hanging"), 72);
+  const ClothNetwork net = scene.build_network();
+  const ClothState s = shaken(scene, 9);
+  NodeVectors one(s.size()), split(s.size());
+  ForceInputs in = inputs();
+  net.net_forces(s, in, one);
+  for (int threads : {2, 3}) {
+    OwnedStepThreads team(threads);
+    in.threads = team.get();
+    net.net_forces(s, in, split);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      ASSERT_EQ(split.at(i), one.at(i)) << "node " << i << ", " << threads << " threads";
+  }
+}
+
+TEST_P(ClothNetworkKernel, WeightsArePerSpringAndPerNodeAndWritable) {
   Scene scene = test::asset_scene("hanging");
   ClothNetwork net = scene.build_network();
   ASSERT_EQ(net.springs.stiffness.size(), net.spring_count());
@@ -260,9 +312,9 @@ TEST(ClothNetwork, WeightsArePerSpringAndPerNodeAndWritable) {
   for (std::size_t i = 0; i < s.size(); ++i)
     s.y[i] -= 0.001 * static_cast<double>(i % 7);
   SpringActivations before, after;
-  net.spring_outputs(s, before);
+  net.spring_outputs(s, before, SpringPrecision::float64, kernel());
   net.springs.stiffness[3] *= 2.0;
-  net.spring_outputs(s, after);
+  net.spring_outputs(s, after, SpringPrecision::float64, kernel());
   EXPECT_NEAR(after.fy[3], 2.0 * before.fy[3], 1e-12 * std::abs(before.fy[3]) + 1e-15);
   EXPECT_EQ(after.fy[4], before.fy[4]);
 }

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/io/text_file.h"
-#include "core/network/spring_chunk_avx512.h"
+#include "core/network/spring_kernel.h"
 #include "core/scene/scene.h"
 #include "support/test_support.h"
 
@@ -122,8 +122,8 @@ class Determinism : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Determinism, TheSceneMatchesItsStoredHashes) {
   // The stored bits are an AVX-512 build's: its spring kernel's 1/len differs
-  // from the portable one's in the last place (spring_chunk_avx512.h).
-  if (!spring_chunks::kHandVectorised)
+  // from the portable one's in the last place (spring_kernel.h).
+  if (!avx512_kernel_compiled())
     GTEST_SKIP() << "the stored hashes are an AVX-512 build's; this build uses the portable "
                     "spring kernel (docs/network.md, \"Why the step is fast\")";
   const std::string file = GetParam() + ".json";
