@@ -2,14 +2,17 @@
 // cloth (step_bench.h: the default scene's cloth resized to N x N, the cloth
 // and step rule `neurocloth-cli bench` times), and the same cloth read from an
 // OBJ file (the mesh path: its springs in stencil order, stencil_order.h),
-// and the network step through each spring kernel (BM_KernelStep).
+// the network step through each spring kernel (BM_KernelStep), and with its
+// damping taken either way (BM_DampingStep).
 // Run with --benchmark_repetitions=9 --benchmark_report_aggregates_only=true
 // and quote the medians: this machine is shared and noisy.
 #include <benchmark/benchmark.h>
 
 #include <string>
+#include <vector>
 
 #include "app/cli/step_bench.h"
+#include "core/integrators/stability.h"
 
 namespace neurocloth {
 namespace {
@@ -75,6 +78,25 @@ void Args(benchmark::internal::Benchmark* b) {
       b->Args({static_cast<long>(k), n});
 }
 BENCHMARK(BM_Step)->Apply(Args)->Unit(benchmark::kMicrosecond);
+
+// The network step with the springs' damping in the force sum (range(0) 0,
+// the paper's) or taken implicitly after the update (1, spring_damping.h), on
+// the N x N cloth (range(1)). us_per_step is the cost of one step;
+// steps_per_simulated_s is what the adaptive cap (0.5 of the stability bound,
+// with or without the damping's part) allows, so their product is the cost of
+// a simulated second at the cap.
+void BM_DampingStep(benchmark::State& st) {
+  Scene scene = bare_cloth(static_cast<int>(st.range(1)));
+  scene.solver.damping =
+      st.range(0) == 1 ? DampingMode::implicit_springwise : DampingMode::explicit_force;
+  time_steps(st, scene, IntegratorKind::network);
+  std::vector<double> k, d;
+  const double bound = stable_step_bound(scene.build_network(), 2.0, k, d,
+                                         scene.solver.damping == DampingMode::explicit_force);
+  st.counters["steps_per_simulated_s"] = 1.0 / (0.5 * bound);
+  st.SetLabel(std::string("network, damping ") + to_string(scene.solver.damping));
+}
+BENCHMARK(BM_DampingStep)->ArgsProduct({{0, 1}, {32, 64, 128}})->Unit(benchmark::kMicrosecond);
 
 // The network step through one spring kernel (spring_kernel.h): range(0) the
 // kernel, range(1) the precision, range(2) N. The AVX-512 kernel is reported

@@ -10,13 +10,14 @@
 namespace neurocloth {
 
 Rgb method_colour(const std::string& method) {
-  if (method == "network") return {0.12, 0.47, 0.71};         // blue
-  if (method == "explicit_euler") return {1.00, 0.50, 0.05};  // orange
-  if (method == "verlet") return {0.17, 0.63, 0.17};          // green
-  if (method == "rk4") return {0.84, 0.15, 0.16};             // red
-  if (method == "implicit_euler") return {0.58, 0.40, 0.74};  // purple
-  if (method == "projective") return {0.09, 0.75, 0.81};      // cyan
-  if (method == kAdaptiveMethod) return {0.55, 0.34, 0.29};   // brown
+  if (method == "network") return {0.12, 0.47, 0.71};                // blue
+  if (method == "explicit_euler") return {1.00, 0.50, 0.05};         // orange
+  if (method == "verlet") return {0.17, 0.63, 0.17};                 // green
+  if (method == "rk4") return {0.84, 0.15, 0.16};                    // red
+  if (method == "implicit_euler") return {0.58, 0.40, 0.74};         // purple
+  if (method == "projective") return {0.09, 0.75, 0.81};             // cyan
+  if (method == kAdaptiveMethod) return {0.55, 0.34, 0.29};          // brown
+  if (method == kAdaptiveImplicitMethod) return {0.89, 0.47, 0.76};  // pink
   return {0.5, 0.5, 0.5};
 }
 

@@ -27,6 +27,11 @@ void FitProblem::Impl::build_model() {
                      std::string("fit: precision '") + to_string(s.precision) +
                          "' has no adjoint (learning differentiates the double step); set it "
                          "to \"double\" to fit this scene");
+  if (s.damping != DampingMode::explicit_force)
+    throw InputError(scene.path, "solver.damping",
+                     std::string("fit: damping '") + to_string(s.damping) +
+                         "' has no adjoint (learning differentiates the paper's step, damping in "
+                         "the force sum); set it to \"explicit\" to fit this scene");
   base.net = scene.build_network();
   // The scene's modules in the order Scene::make_simulation runs them, and
   // which declaration each one came from.

@@ -269,11 +269,10 @@ class TradeCsvParser {
       if (index_[c] != kAbsent) f[c] = all[index_[c]];
     TradeRow r;
     r.method = f[0].text;
-    const bool adaptive = r.method == kAdaptiveMethod;
-    if (!adaptive && !parse_integrator(r.method))
+    const bool adaptive = is_adaptive_method(r.method);
+    if (!is_trade_method(r.method))
       in_.fail("method",
-               "unknown method '" + r.method + "' (expected one of: " + integrator_names() + ", " +
-                   kAdaptiveMethod + ")",
+               "unknown method '" + r.method + "' (expected one of: " + trade_method_names() + ")",
                line_, f[0].column);
     r.parameter = f[1].text;
     const char* expected = adaptive ? "safety" : "dt";

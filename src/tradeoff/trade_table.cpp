@@ -7,10 +7,12 @@ namespace neurocloth {
 
 SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
   base.dt = row.dt;
-  if (row.method == kAdaptiveMethod) {
+  if (is_adaptive_method(row.method)) {
     base.integrator = IntegratorKind::network;
     base.adaptive = true;
     base.adaptive_settings.safety = row.value;
+    base.damping = row.method == kAdaptiveImplicitMethod ? DampingMode::implicit_springwise
+                                                         : DampingMode::explicit_force;
     return base;
   }
   const auto kind = parse_integrator(row.method);
@@ -53,7 +55,7 @@ std::string line_name(const TradeRow& row) {
 
 std::string describe_setting(const TradeRow& row) {
   char s[160];
-  if (row.method == kAdaptiveMethod)
+  if (is_adaptive_method(row.method))
     std::snprintf(s, sizeof s, "%s, safety %.4g (t_delta %.4g s)", row.method.c_str(), row.value,
                   row.dt);
   else

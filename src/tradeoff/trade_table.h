@@ -14,9 +14,25 @@ namespace neurocloth {
 
 // The method name of the paper's adaptive propagation (network integrator, Table 1).
 inline constexpr const char* kAdaptiveMethod = "adaptive";
+// The same propagation with the springs' damping taken implicitly
+// (solver.damping "implicit", spring_damping.h). Swept only when named.
+inline constexpr const char* kAdaptiveImplicitMethod = "adaptive_implicit";
+
+// The adaptive propagation, either way: its rows vary "safety".
+inline bool is_adaptive_method(const std::string& method) {
+  return method == kAdaptiveMethod || method == kAdaptiveImplicitMethod;
+}
+// A method a trade may hold: an integrator's name or an adaptive method.
+inline bool is_trade_method(const std::string& method) {
+  return is_adaptive_method(method) || parse_integrator(method).has_value();
+}
+// "network, ..., projective, adaptive, adaptive_implicit" for error messages.
+inline std::string trade_method_names() {
+  return integrator_names() + ", " + kAdaptiveMethod + ", " + kAdaptiveImplicitMethod;
+}
 
 struct TradeRow {
-  std::string method;     // an integrator's name, or kAdaptiveMethod
+  std::string method;     // an integrator's name, or an adaptive method
   std::string parameter;  // what the sweep varies: "dt" (fixed step) or "safety" (adaptive)
   double value = 0;       // its value
   double dt = 0;          // the fixed step, or the adaptive refresh interval t_delta, s

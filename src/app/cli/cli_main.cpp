@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
   simulate->add_option("--precision", sim.precision,
                        "The spring layer's arithmetic: double (the default) or float (faster, "
                        "explicit integrators only; docs/network.md, \"Float springs\")");
+  simulate->add_option("--damping", sim.damping,
+                       "The springs' damping: explicit (the paper's, in the force sum) or implicit "
+                       "(spring by spring after the velocity update: larger stable steps on fine "
+                       "cloths; network integrator only; docs/stability.md)");
   simulate->add_option("--record-fps", sim.record_fps,
                        "Frames per simulated second for --record and --export-pc2 (default 60)");
 

@@ -51,6 +51,8 @@ struct SimulateOptions {
   std::optional<int> threads;
   // --precision double|float: the scene's solver.precision, overridden.
   std::optional<std::string> precision;
+  // --damping explicit|implicit: the scene's solver.damping, overridden.
+  std::optional<std::string> damping;
 };
 int run_simulate(const SimulateOptions& options);
 

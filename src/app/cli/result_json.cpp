@@ -29,6 +29,7 @@ nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& num
   doc["scene"] = scene_path;
   doc["integrator"] = to_string(s.integrator);
   doc["precision"] = to_string(s.precision);
+  doc["damping"] = to_string(s.damping);
   doc["adaptive"] = s.adaptive;
   doc["dt"] = s.dt;
   doc["time"] = sim.time();

@@ -150,6 +150,16 @@ int run_simulate(const SimulateOptions& o) {
   scene.solver.threads =
       o.threads ? *o.threads : batch_step_threads(scene.topology.rest_positions.size());
   if (o.precision) scene.solver.precision = precision_option(*o.precision);
+  if (o.damping && !parse_damping(*o.damping, scene.solver.damping))
+    throw InputError(
+        "command line", "--damping",
+        "unknown damping '" + *o.damping + "' (expected one of: " + kDampingNames + ")");
+  if (scene.solver.damping == DampingMode::implicit_springwise &&
+      scene.solver.integrator != IntegratorKind::network)
+    throw InputError("command line", o.damping ? "--damping" : "--integrator",
+                     std::string("solver.damping \"implicit\" is for the network integrator, "
+                                 "not ") +
+                         to_string(scene.solver.integrator));
   const std::string conflict = precision_conflict(scene.solver.integrator, scene.solver.precision);
   if (!conflict.empty())
     throw InputError("command line", o.precision ? "--precision" : "--integrator",

@@ -72,10 +72,10 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   if (o.levels < 1 || o.levels > 40)
     throw InputError("command line", "--levels", "must be in [1, 40] (each halves the step)");
   for (const std::string& m : o.methods)
-    if (m != kAdaptiveMethod && !parse_integrator(m))
-      throw InputError("command line", "--methods",
-                       "unknown method '" + m + "' (expected one of: " + integrator_names() + ", " +
-                           kAdaptiveMethod + ")");
+    if (!is_trade_method(m))
+      throw InputError(
+          "command line", "--methods",
+          "unknown method '" + m + "' (expected one of: " + trade_method_names() + ")");
   for (int i : o.projective_iterations)
     if (!limits::kIterations.contains(i))
       throw InputError("command line", "--projective-iterations", limits::kIterations.refusal(i));

@@ -1,5 +1,7 @@
 #include "core/integrators/integrator.h"
 
+#include <stdexcept>
+
 #include "core/integrators/integrator_factory.h"
 
 namespace neurocloth {
@@ -37,10 +39,14 @@ std::string integrator_names() {
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
                                             double min_step_fraction, int iterations,
-                                            double linear_tolerance) {
+                                            double linear_tolerance, bool implicit_damping) {
+  if (implicit_damping && kind != IntegratorKind::network)
+    throw std::invalid_argument(std::string("solver.damping \"implicit\" is for the network "
+                                            "integrator, not ") +
+                                to_string(kind));
   switch (kind) {
     case IntegratorKind::network:
-      return make_network_propagation(net);
+      return make_network_propagation(net, implicit_damping);
     case IntegratorKind::explicit_euler:
       return make_explicit_euler(net);
     case IntegratorKind::verlet:

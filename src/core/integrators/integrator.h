@@ -58,15 +58,22 @@ class Integrator {
   // sweeps): a fixed step then passes stale forces instead of paying a sweep
   // over every spring for them.
   virtual bool reads_start_force() const { return true; }
+  // True when the step damps the springs itself (damp_springs) and its forces
+  // come without the damping term (ForceInputs::spring_damping false): its
+  // stability bound is then the springs' stiffness alone.
+  virtual bool damps_springs() const { return false; }
 };
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.
 // `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
 // `iterations` the projective step's local-global iterations; `linear_tolerance`
-// the implicit step's conjugate gradient tolerance (relative residual).
+// the implicit step's conjugate gradient tolerance (relative residual);
+// `implicit_damping` the network step's damping taken spring by spring
+// (spring_damping.h; the other integrators refuse it).
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
                                             double min_step_fraction = kDefaultMinStepFraction,
                                             int iterations = kDefaultProjectiveIterations,
-                                            double linear_tolerance = kDefaultLinearTolerance);
+                                            double linear_tolerance = kDefaultLinearTolerance,
+                                            bool implicit_damping = false);
 
 }  // namespace neurocloth

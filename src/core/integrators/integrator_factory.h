@@ -6,7 +6,8 @@
 #include "core/integrators/integrator.h"
 
 namespace neurocloth {
-std::unique_ptr<Integrator> make_network_propagation(const ClothNetwork& net);
+std::unique_ptr<Integrator> make_network_propagation(const ClothNetwork& net,
+                                                     bool implicit_damping = false);
 std::unique_ptr<Integrator> make_explicit_euler(const ClothNetwork& net);
 std::unique_ptr<Integrator> make_velocity_verlet(const ClothNetwork& net);
 std::unique_ptr<Integrator> make_runge_kutta4(const ClothNetwork& net);

@@ -12,7 +12,7 @@ double stable_step_bound(const ClothNetwork& net, double limit) {
 }
 
 double stable_step_bound(const ClothNetwork& net, double limit, std::vector<double>& k_sum,
-                         std::vector<double>& d_sum) {
+                         std::vector<double>& d_sum, bool with_damping) {
   const double inf = std::numeric_limits<double>::infinity();
   if (!std::isfinite(limit)) return inf;
   const std::size_t n = net.node_count();
@@ -30,7 +30,7 @@ double stable_step_bound(const ClothNetwork& net, double limit, std::vector<doub
     if (net.masses.free[i] == 0.0) continue;
     const double w = std::abs(net.masses.inverse_mass[i]);
     const double omega2 = 2.0 * w * k_sum[i];
-    const double gamma = 2.0 * w * d_sum[i];
+    const double gamma = with_damping ? 2.0 * w * d_sum[i] : 0.0;
     const double denom = gamma + std::sqrt(gamma * gamma + limit * limit * omega2);
     if (denom > 0.0) bound = std::min(bound, limit * limit / denom);
   }
@@ -62,7 +62,8 @@ double explicit_euler_step_bound(const ClothNetwork& net, std::vector<double>& d
 
 double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
                              std::vector<double>& k_sum, std::vector<double>& d_sum) {
-  const double bound = stable_step_bound(net, integrator.stability_limit(), k_sum, d_sum);
+  const double bound = stable_step_bound(net, integrator.stability_limit(), k_sum, d_sum,
+                                         !integrator.damps_springs());
   if (integrator.kind() != IntegratorKind::explicit_euler) return bound;
   const double damped = explicit_euler_step_bound(net, d_sum);
   return damped > 0.0 ? std::min(bound, damped) : bound;

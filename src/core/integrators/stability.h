@@ -17,8 +17,11 @@ namespace neurocloth {
 double stable_step_bound(const ClothNetwork& net, double stability_limit);
 // The same with caller-owned scratch (resized to the node count), so a live
 // simulation that recomputes the bound after every weight change allocates nothing.
+// `with_damping` false: the springs' stiffness alone (gamma 0), for a step that
+// takes their damping implicitly (Integrator::damps_springs, spring_damping.h).
 double stable_step_bound(const ClothNetwork& net, double stability_limit,
-                         std::vector<double>& k_sum, std::vector<double>& d_sum);
+                         std::vector<double>& k_sum, std::vector<double>& d_sum,
+                         bool with_damping = true);
 
 // Forward Euler is the exception: on an undamped oscillator it gains energy at
 // every step (|1 + i h omega| > 1), so no L makes it stable. With viscosity it

@@ -93,13 +93,14 @@ using namespace spring_chunks;
 // differences are rounded to float and the outputs widened back to double.
 // Hand: the same chunk through the AVX-512 kernel (SpringKernel::avx512);
 // instantiated only where it is compiled in.
-template <SpringFunctionKind K, bool Direct, typename T, bool Hand>
+template <SpringFunctionKind K, bool Direct, typename T, bool Hand, bool Damped>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
   static_assert(!Hand || kHandVectorised, "the AVX-512 kernel is not compiled in");
 #if defined(NEUROCLOTH_HAND_VECTORISED)
   if constexpr (Hand) {
-    propagate_chunk_avx512<K, Direct, T>(L, first, count, a, b, s, kMinSpringLength, fx, fy, fz);
+    propagate_chunk_avx512<K, Direct, T, Damped>(L, first, count, a, b, s, kMinSpringLength, fx, fy,
+                                                 fz);
     return;
   }
 #endif
@@ -139,11 +140,14 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
     T e = len - r;                                      // spring function: linear ...
     if constexpr (K == SpringFunctionKind::stiffening)  // ... or stiffer beyond the threshold
       e += extra * std::max(T(0), e - threshold * r);
-    // Velocity-force neuron: (v_b - v_a) projected on the spring, times len.
-    const T rel = static_cast<T>(vxb[k] - vxa[k]) * dx + static_cast<T>(vyb[k] - vya[k]) * dy +
-                  static_cast<T>(vzb[k] - vza[k]) * dz;
     // Force neuron: b1 * spring + b2 * damping, along the unit direction.
-    const T magnitude = static_cast<T>(b1[k]) * e + static_cast<T>(b2[k]) * rel * inv_len;
+    T magnitude = static_cast<T>(b1[k]) * e;
+    if constexpr (Damped) {
+      // Velocity-force neuron: (v_b - v_a) projected on the spring, times len.
+      const T rel = static_cast<T>(vxb[k] - vxa[k]) * dx + static_cast<T>(vyb[k] - vya[k]) * dy +
+                    static_cast<T>(vzb[k] - vza[k]) * dz;
+      magnitude += static_cast<T>(b2[k]) * rel * inv_len;
+    }
     const T scale = has_direction ? magnitude * inv_len : T(0);
     const double gx = scale * dx, gy = scale * dy, gz = scale * dz;
     if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
@@ -166,7 +170,7 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
 // chunk wholly inside adds its outputs directly (or through accumulate_chunk);
 // a chunk that crosses lo or hi is evaluated by every part it touches, and
 // each adds only to its own nodes (step_threads.h).
-template <SpringFunctionKind K, typename T, bool Hand>
+template <SpringFunctionKind K, typename T, bool Hand, bool Damped>
 void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F, std::int32_t lo,
                     std::int32_t hi) {
   Chunk chunk;
@@ -176,8 +180,8 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     const bool a_inside = a >= lo && a + count <= hi;
     const bool b_inside = b >= lo && b + count <= hi;
     if (direct && a_inside && b_inside) {
-      propagate_chunk<K, true, T, Hand>(net.springs, first, count, a, b, s, F.x.data() + a,
-                                        F.y.data() + a, F.z.data() + a);
+      propagate_chunk<K, true, T, Hand, Damped>(net.springs, first, count, a, b, s, F.x.data() + a,
+                                                F.y.data() + a, F.z.data() + a);
       return;
     }
     const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
@@ -188,28 +192,29 @@ void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F
     if constexpr (Hand) {
       if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
         if (o == 1)
-          propagate_row_avx512<K, T, 1>(net.springs, first, count, a, s, kMinSpringLength,
-                                        F.x.data() + a, F.y.data() + a, F.z.data() + a);
+          propagate_row_avx512<K, T, 1, Damped>(net.springs, first, count, a, s, kMinSpringLength,
+                                                F.x.data() + a, F.y.data() + a, F.z.data() + a);
         else
-          propagate_row_avx512<K, T, 2>(net.springs, first, count, a, s, kMinSpringLength,
-                                        F.x.data() + a, F.y.data() + a, F.z.data() + a);
+          propagate_row_avx512<K, T, 2, Damped>(net.springs, first, count, a, s, kMinSpringLength,
+                                                F.x.data() + a, F.y.data() + a, F.z.data() + a);
         return;
       }
     }
 #endif
-    propagate_chunk<K, false, T, Hand>(net.springs, first, count, a, b, s, chunk.fx, chunk.fy,
-                                       chunk.fz);
+    propagate_chunk<K, false, T, Hand, Damped>(net.springs, first, count, a, b, s, chunk.fx,
+                                               chunk.fy, chunk.fz);
     accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
   });
 }
 
 template <SpringFunctionKind K, typename T, bool Hand>
 void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations& act) {
-  for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
-                                  std::int32_t b, bool) {
-    propagate_chunk<K, false, T, Hand>(net.springs, first, count, a, b, s, act.fx.data() + first,
-                                       act.fy.data() + first, act.fz.data() + first);
-  });
+  for_each_chunk(net.springs,
+                 [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+                   propagate_chunk<K, false, T, Hand, true>(
+                       net.springs, first, count, a, b, s, act.fx.data() + first,
+                       act.fy.data() + first, act.fz.data() + first);
+                 });
 }
 
 // Calls fn(K, T, Hand) with the instantiation of the sweep that evaluates
@@ -263,11 +268,18 @@ void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F, std::si
 
 void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
   with_spring_sweep(springs.function.kind, in.precision, in.kernel, [&](auto k, auto t, auto hand) {
-    for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
-      external_force(in, F, lo, hi);
-      propagate_part<decltype(k)::value, decltype(t), decltype(hand)::value>(
-          *this, s, F, static_cast<std::int32_t>(lo), static_cast<std::int32_t>(hi));
-    });
+    const auto sweep = [&](auto damped) {
+      for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+        external_force(in, F, lo, hi);
+        propagate_part<decltype(k)::value, decltype(t), decltype(hand)::value,
+                       decltype(damped)::value>(*this, s, F, static_cast<std::int32_t>(lo),
+                                                static_cast<std::int32_t>(hi));
+      });
+    };
+    if (in.spring_damping)
+      sweep(std::true_type{});
+    else
+      sweep(std::false_type{});
   });
   // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);

@@ -34,6 +34,11 @@ struct ForceInputs {
   // The code that evaluates them (SolverSettings::kernel; spring_kernel.h):
   // the same forces to round-off, other last bits.
   SpringKernel kernel = SpringKernel::automatic;
+  // Whether the force neurons add their damping term (the velocity-force
+  // neuron). False where the integrator damps the springs itself, after the
+  // velocity neurons' update (SolverSettings::damping, spring_damping.h): the
+  // sum then holds the springs' elastic part and everything else.
+  bool spring_damping = true;
 };
 
 }  // namespace neurocloth

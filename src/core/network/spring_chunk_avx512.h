@@ -69,7 +69,7 @@ struct ChunkInputs {
 // The force neurons' outputs of springs k..k+7 of a chunk whose b ends are
 // `offset` nodes after its a ends (p* and v* point at node a of spring 0);
 // lanes outside `m` are zero.
-template <SpringFunctionKind K>
+template <SpringFunctionKind K, bool Damped>
 struct Forces8 : ChunkInputs {
   __m512d threshold, extra, min_len2;
 
@@ -108,12 +108,14 @@ struct Forces8 : ChunkInputs {
                                                  _mm512_sub_pd(e, _mm512_mul_pd(threshold, r)));
       e = _mm512_add_pd(e, _mm512_mul_pd(extra, beyond));
     }
-    const __m512d rel =
-        _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(at(vx + offset), at(vx)), dx),
-                                    _mm512_mul_pd(_mm512_sub_pd(at(vy + offset), at(vy)), dy)),
-                      _mm512_mul_pd(_mm512_sub_pd(at(vz + offset), at(vz)), dz));
-    const __m512d magnitude =
-        _mm512_add_pd(_mm512_mul_pd(at(b1), e), _mm512_mul_pd(at(b2), _mm512_mul_pd(rel, inv_len)));
+    __m512d magnitude = _mm512_mul_pd(at(b1), e);
+    if constexpr (Damped) {
+      const __m512d rel =
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(at(vx + offset), at(vx)), dx),
+                                      _mm512_mul_pd(_mm512_sub_pd(at(vy + offset), at(vy)), dy)),
+                        _mm512_mul_pd(_mm512_sub_pd(at(vz + offset), at(vz)), dz));
+      magnitude = _mm512_add_pd(magnitude, _mm512_mul_pd(at(b2), _mm512_mul_pd(rel, inv_len)));
+    }
     const __m512d scale = _mm512_maskz_mul_pd(has_direction, magnitude, inv_len);
     gx = _mm512_mul_pd(scale, dx);
     gy = _mm512_mul_pd(scale, dy);
@@ -129,7 +131,7 @@ struct Forces8 : ChunkInputs {
 // lanes cost a join of two halves per input and a split per output, which
 // measured slower than the double kernel (docs/network.md, "Float springs").
 // vrsqrt14ps is within 2^-14, so one Newton step reaches float's round-off.
-template <SpringFunctionKind K>
+template <SpringFunctionKind K, bool Damped>
 struct FloatForces8 : ChunkInputs {
   __m256 threshold, extra, min_len2;
 
@@ -164,12 +166,14 @@ struct FloatForces8 : ChunkInputs {
                                                 _mm256_sub_ps(e, _mm256_mul_ps(threshold, r)));
       e = _mm256_add_ps(e, _mm256_mul_ps(extra, beyond));
     }
-    const __m256 rel =
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(diff(vx), dx), _mm256_mul_ps(diff(vy), dy)),
-                      _mm256_mul_ps(diff(vz), dz));
-    const __m256 magnitude =
-        _mm256_add_ps(_mm256_mul_ps(narrow(at(b1)), e),
-                      _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
+    __m256 magnitude = _mm256_mul_ps(narrow(at(b1)), e);
+    if constexpr (Damped) {
+      const __m256 rel =
+          _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(diff(vx), dx), _mm256_mul_ps(diff(vy), dy)),
+                        _mm256_mul_ps(diff(vz), dz));
+      magnitude =
+          _mm256_add_ps(magnitude, _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
+    }
     const __m256 scale = _mm256_maskz_mul_ps(has_direction, magnitude, inv_len);
     gx = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
     gy = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
@@ -178,16 +182,19 @@ struct FloatForces8 : ChunkInputs {
 };
 
 // The force neurons of a chunk in `T`'s arithmetic.
-template <SpringFunctionKind K, typename T>
-using Forces = std::conditional_t<std::is_same_v<T, float>, FloatForces8<K>, Forces8<K>>;
+// Damped: with the velocity-force neurons' term (false: the integrator damps
+// the springs itself, SolverSettings::damping).
+template <SpringFunctionKind K, typename T, bool Damped>
+using Forces =
+    std::conditional_t<std::is_same_v<T, float>, FloatForces8<K, Damped>, Forces8<K, Damped>>;
 
 // propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
 // b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
-template <SpringFunctionKind K, bool Direct, typename T>
+template <SpringFunctionKind K, bool Direct, typename T, bool Damped>
 void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
                             std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
                             double* fx, double* fy, double* fz) {
-  const Forces<K, T> forces(L, first, count, a, b, s, min_length);
+  const Forces<K, T, Damped> forces(L, first, count, a, b, s, min_length);
   const std::int32_t offset = b - a;
   for (std::int32_t k = 0; k < count; k += 8) {
     const __mmask8 m = first_lanes(count - k);
@@ -213,12 +220,12 @@ void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32
 // +g[j] - g[j - O]. The outputs never leave the registers: g[j - O] is the
 // vector before shifted by O lanes. Each node's sum is the expression
 // accumulate_chunk evaluates, so the bits are the same as that path's.
-template <SpringFunctionKind K, typename T, int O>
+template <SpringFunctionKind K, typename T, int O, bool Damped>
 void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
                           std::int32_t a, const ClothState& s, double min_length, double* fx,
                           double* fy, double* fz) {
   static_assert(O > 0 && O < 8, "a shift within one vector");
-  const Forces<K, T> forces(L, first, count, a, a + O, s, min_length);
+  const Forces<K, T, Damped> forces(L, first, count, a, a + O, s, min_length);
   __m512d px = _mm512_setzero_pd(), py = px, pz = px;
   const auto shifted = [](__m512d now, __m512d before) {
     return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),

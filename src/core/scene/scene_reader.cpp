@@ -202,7 +202,7 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   const std::string field = "solver";
   in.allow_only(v, field,
                 {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
-                 "check_interval", "iterations", "linear_tolerance", "precision"});
+                 "check_interval", "iterations", "linear_tolerance", "precision", "damping"});
   if (in.has(v, "integrator")) {
     const std::string name = in.string(v.at("integrator"), field + ".integrator");
     const auto kind = parse_integrator(name);
@@ -239,6 +239,15 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
     s.precision = *precision;
     const std::string conflict = precision_conflict(s.integrator, s.precision);
     if (!conflict.empty()) in.fail(field + ".precision", conflict);
+  }
+  if (in.has(v, "damping")) {
+    const std::string name = in.string(v.at("damping"), field + ".damping");
+    if (!parse_damping(name, s.damping))
+      in.fail(field + ".damping",
+              "unknown damping '" + name + "' (expected one of: " + kDampingNames + ")");
+    if (s.damping == DampingMode::implicit_springwise && s.integrator != IntegratorKind::network)
+      in.fail(field + ".damping", std::string("\"implicit\" is for the network integrator, not ") +
+                                      to_string(s.integrator));
   }
   return s;
 }

@@ -10,6 +10,7 @@
 
 #include "core/base/step_threads.h"
 #include "core/integrators/integrator.h"
+#include "core/integrators/spring_damping.h"
 #include "core/integrators/step_controller.h"
 #include "core/io/physical_limits.h"
 #include "core/network/spring_kernel.h"
@@ -81,6 +82,11 @@ struct SolverSettings {
   // benchmark runs the portable kernel on an AVX-512 machine too. Not a scene
   // field: a scene's results do not depend on it beyond the last bits.
   SpringKernel kernel = SpringKernel::automatic;
+  // The springs' damping: in the force sum, as the paper has it (explicit), or
+  // taken implicitly spring by spring after the velocity update (implicit,
+  // spring_damping.h), which lifts the damping's bound on the step. The
+  // network integrator only; docs/stability.md, "Damping taken implicitly".
+  DampingMode damping = DampingMode::explicit_force;
 };
 
 // Why `precision` cannot go with `integrator`, or "" when it can. The implicit
@@ -142,6 +148,12 @@ inline void validate(const SolverSettings& s) {
     fail("kernel", std::string("one of ") + kKernelNames, static_cast<double>(s.kernel));
   const std::string missing = kernel_unavailable(s.kernel);
   if (!missing.empty()) throw std::invalid_argument("solver.kernel avx512: " + missing);
+  if (s.damping != DampingMode::explicit_force && s.damping != DampingMode::implicit_springwise)
+    fail("damping", std::string("one of ") + kDampingNames, static_cast<double>(s.damping));
+  if (s.damping == DampingMode::implicit_springwise && s.integrator != IntegratorKind::network)
+    throw std::invalid_argument(
+        std::string("solver.damping \"implicit\" is for the network integrator, not ") +
+        to_string(s.integrator));
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));

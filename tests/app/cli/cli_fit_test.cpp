@@ -204,6 +204,12 @@ TEST_F(CliFit, WhatFitCannotChangeIsRefusedByName) {
                                "\"integrator\": \"network\", \"precision\": \"float\""));
   expect_input_error({"fit", in_float, "--reference", ref, "--out", fitted()},
                      {"solver.precision", "adjoint"});
+  // Likewise the paper's step: damping taken implicitly has no adjoint.
+  const std::string implicit_damping =
+      write("damping.json", with(read_text(scene_asset("chain")), "\"integrator\": \"network\"",
+                                 "\"integrator\": \"network\", \"damping\": \"implicit\""));
+  expect_input_error({"fit", implicit_damping, "--reference", ref, "--out", fitted()},
+                     {"solver.damping", "adjoint"});
 }
 
 // A reference only a value beyond the scene's limits would explain (the

@@ -108,6 +108,20 @@ TEST_F(Cli, PrecisionOverridesTheSceneAndIsRefusedByNameWhereItCannotGo) {
                      {"--precision", "implicit_euler"});
 }
 
+TEST_F(Cli, DampingOverridesTheSceneAndIsRefusedByNameWhereItCannotGo) {
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--damping",
+                         "implicit", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_EQ(read_result().at("damping"), "implicit");
+  fs::remove(result_path());
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--damping",
+                      "viscous", "--out", result_path()},
+                     {"--damping", "viscous", "explicit, implicit"});
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--damping",
+                      "implicit", "--integrator", "rk4", "--out", result_path()},
+                     {"--damping", "rk4"});
+}
+
 TEST_F(Cli, AdaptiveRunIsMarkedAdaptive) {
   const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.02", "--adaptive",
                          "--out", result_path()});

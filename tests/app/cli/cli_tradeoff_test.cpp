@@ -19,9 +19,9 @@ std::vector<std::string> quick_tradeoff(const std::string& scene, const std::str
 TradeRow row(const std::string& method, double dt, double cost, double error) {
   TradeRow r;
   r.method = method;
-  r.parameter = method == kAdaptiveMethod ? "safety" : "dt";
+  r.parameter = is_adaptive_method(method) ? "safety" : "dt";
   r.dt = dt;
-  r.value = method == kAdaptiveMethod ? 0.5 : dt;
+  r.value = is_adaptive_method(method) ? 0.5 : dt;
   r.steps = 100;
   r.position_error_max = error;
   r.position_error_rms = error / 3;
@@ -105,6 +105,48 @@ TEST_F(Cli, TradeoffAtASizeRunsTheStepsAskedAndRecordsTheGrid) {
       iterations.push_back(row.iterations);
     }
   EXPECT_EQ(iterations, (std::vector<int>{1, 3}));
+}
+
+// The adaptive propagation with the springs' damping taken implicitly is a
+// line of its own when named (never by default): safety halved as the
+// adaptive line's, at a cap its springs alone set, so fewer steps.
+TEST_F(Cli, TradeoffSweepsTheImplicitDampingLineWhenNamed) {
+  const std::string report = (out_dir() / "drape").string();
+  const Outcome r =
+      run({"tradeoff", scene_asset("table_drape"), "--size", "12", "--seconds", "0.5", "--samples",
+           "1", "--methods", "adaptive,adaptive_implicit", "--levels", "2", "--reference-budget",
+           "600", "--method-budget", "600", "--out", report});
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  const TradeTable t = read_sized_trade(report + ".csv", 12);
+  std::vector<const TradeRow*> plain, implicit;
+  for (const TradeRow& row : t.rows) {
+    if (row.method == kAdaptiveMethod) plain.push_back(&row);
+    if (row.method == kAdaptiveImplicitMethod) implicit.push_back(&row);
+  }
+  ASSERT_EQ(plain.size(), 2u);
+  ASSERT_EQ(implicit.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(implicit[i]->parameter, "safety");
+    EXPECT_EQ(implicit[i]->value, plain[i]->value);
+    EXPECT_EQ(implicit[i]->status, "ok");
+    EXPECT_LT(implicit[i]->steps, plain[i]->steps);
+  }
+}
+
+// A picked implicit-damping row runs with its damping, and says so.
+TEST_F(Cli, AccuracyPicksAnImplicitDampingRowWithItsDamping) {
+  TradeTable t = read_trade_csv(write("base.csv", hand_made_trade()));
+  t.rows.push_back(row(kAdaptiveImplicitMethod, 0.004, 0.005, 0.15));
+  const std::string trade = write("trade.csv", trade_csv(t));
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--accuracy",
+                         "0.2", "--trade", trade, "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_NE(r.out.find("picked adaptive_implicit, safety 0.5"), std::string::npos) << r.out;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("integrator"), "network");
+  EXPECT_TRUE(doc.at("adaptive").get<bool>());
+  EXPECT_EQ(doc.at("damping"), "implicit");
+  EXPECT_EQ(doc.at("accuracy").at("method"), "adaptive_implicit");
 }
 
 TEST_F(Cli, AccuracyPicksTheCheapestSettingFromAGivenTrade) {

@@ -1,5 +1,5 @@
 // The solver block's named choices in a scene file: the integrator and the
-// springs' precision, and the error that names the field and the valid values.
+// springs' precision and damping, and the error that names the field and the valid values.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -59,6 +59,31 @@ TEST(SceneFields, FloatPrecisionIsRefusedForTheImplicitIntegrators) {
     expect_names(*e, path, "solver.precision", line_of(text, "\"precision\""));
     EXPECT_NE(std::string(e->what()).find(integrator), std::string::npos) << e->what();
   }
+}
+
+TEST(SceneFields, DampingIsExplicitUnlessTheSceneSaysImplicit) {
+  EXPECT_EQ(parse_scene(grid_scene().text(), scratch_path("d0.json")).solver.damping,
+            DampingMode::explicit_force);
+  const Scene s =
+      parse_scene(grid_scene().set("/solver/damping", "implicit").text(), scratch_path("d1.json"));
+  EXPECT_EQ(s.solver.damping, DampingMode::implicit_springwise);
+}
+
+TEST(SceneFields, UnknownDampingListsValidNamesAndImplicitIsForTheNetworkOnly) {
+  const std::string path = scratch_path("damping.json");
+  const std::string text = grid_scene().set("/solver/damping", "viscous").text();
+  const auto e = parse_error(text, path);
+  ASSERT_TRUE(e);
+  expect_names(*e, path, "solver.damping", line_of(text, "\"damping\""));
+  for (const char* name : {"viscous", "explicit", "implicit"})
+    EXPECT_NE(std::string(e->what()).find(name), std::string::npos) << e->what();
+  const std::string rk4_path = scratch_path("damping_rk4.json");
+  const std::string rk4 =
+      grid_scene().set("/solver/integrator", "rk4").set("/solver/damping", "implicit").text();
+  const auto refused = parse_error(rk4, rk4_path);
+  ASSERT_TRUE(refused);
+  expect_names(*refused, rk4_path, "solver.damping", line_of(rk4, "\"damping\""));
+  EXPECT_NE(std::string(refused->what()).find("rk4"), std::string::npos) << refused->what();
 }
 
 }  // namespace
