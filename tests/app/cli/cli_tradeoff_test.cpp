@@ -113,11 +113,11 @@ TEST_F(Cli, TradeoffAtASizeRunsTheStepsAskedAndRecordsTheGrid) {
 TEST_F(Cli, TradeoffSweepsTheImplicitDampingLineWhenNamed) {
   const std::string report = (out_dir() / "drape").string();
   const Outcome r =
-      run({"tradeoff", scene_asset("table_drape"), "--size", "12", "--seconds", "0.5", "--samples",
+      run({"tradeoff", scene_asset("table_drape"), "--size", "8", "--seconds", "0.3", "--samples",
            "1", "--methods", "adaptive,adaptive_implicit", "--levels", "2", "--reference-budget",
            "600", "--method-budget", "600", "--out", report});
   ASSERT_EQ(r.code, kOk) << r.out << r.err;
-  const TradeTable t = read_sized_trade(report + ".csv", 12);
+  const TradeTable t = read_sized_trade(report + ".csv", 8);
   std::vector<const TradeRow*> plain, implicit;
   for (const TradeRow& row : t.rows) {
     if (row.method == kAdaptiveMethod) plain.push_back(&row);
