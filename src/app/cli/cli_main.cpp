@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
   simulate->add_option("--precision", sim.precision,
                        "The spring layer's arithmetic: double (the default) or float (faster, "
                        "explicit integrators only; docs/network.md, \"Float springs\")");
+  simulate->add_option("--size", sim.size,
+                       "Run the scene's cloth resized to N x N, keeping its width and mass (as the "
+                       "window's --size)");
   simulate->add_option("--record-fps", sim.record_fps,
                        "Frames per simulated second for --record and --export-pc2 (default 60)");
 
