@@ -2,7 +2,7 @@
 
     blender -b --factory-startup --python blender_cloth_drape.py -- \
         N QUALITY SECONDS FPS OUT.json [--spring K --shear K --bend B --damping C
-                                        --bend_damping D]
+                                        --bend_damping D --distance M]
 
 Builds the drape of assets/scenes/table_drape.json in an empty scene: an N x N
 vertex grid 1.2 m wide, 25 cm above a 0.8 x 0.8 x 0.75 m box (a collider),
@@ -116,7 +116,8 @@ def main():
     c = mod.collision_settings
     c.use_collision = True
     c.use_self_collision = False
-    c.distance_min = 0.001  # its floor; the table's thickness is the contact margin
+    # The cloth's own collision distance, added to the table's thickness.
+    c.distance_min = o.get("distance", 0.015)  # Blender's default
     mod.point_cache.frame_start = 1
     mod.point_cache.frame_end = scene.frame_end
 
