@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
                        "The springs' damping: explicit (the paper's, in the force sum) or implicit "
                        "(spring by spring after the velocity update: larger stable steps on fine "
                        "cloths; network integrator only; docs/stability.md)");
+  simulate->add_option("--size", sim.size,
+                       "Run the scene's cloth resized to N x N, keeping its width and mass (as the "
+                       "window's --size)");
   simulate->add_option("--record-fps", sim.record_fps,
                        "Frames per simulated second for --record and --export-pc2 (default 60)");
 

@@ -53,6 +53,7 @@ struct SimulateOptions {
   std::optional<std::string> precision;
   // --damping explicit|implicit: the scene's solver.damping, overridden.
   std::optional<std::string> damping;
+  std::optional<int> size;  // --size N: sized_scene
 };
 int run_simulate(const SimulateOptions& options);
 
@@ -79,10 +80,14 @@ struct TradeoffOptions {
   std::optional<int> workers;
 };
 int run_tradeoff(const TradeoffOptions& options);
+struct Scene;
+// --size N (simulate, tradeoff): the scene's cloth resized to N x N
+// (resized_grid), as the window's --size runs it; without N, the scene as
+// read. A size out of range or a scene with no grid is an InputError.
+Scene sized_scene(Scene scene, const std::string& scene_path, const std::optional<int>& size);
 // The parts `simulate --accuracy` shares when it has to measure a trade itself:
 // the checked plan (InputError naming the option) and the measurement, which
 // prints its progress on stdout.
-struct Scene;
 struct TradeoffPlan;
 struct TradeTable;
 TradeoffPlan tradeoff_plan(const TradeoffOptions& options);

@@ -116,7 +116,7 @@ SpringPrecision precision_option(const std::string& name) {
 int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
     throw InputError("command line", "--seconds", "must be a finite number >= 0");
-  Scene scene = load_scene(o.scene);
+  Scene scene = sized_scene(load_scene(o.scene), o.scene, o.size);
   check_output_path("--out", o.out, input_files(scene));
   std::optional<AccuracyPick> accuracy;
   if (o.accuracy) accuracy = pick_for_accuracy(o, scene);

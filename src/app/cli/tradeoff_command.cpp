@@ -83,8 +83,6 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
     if (!limits::kLinearTolerance.contains(t))
       throw InputError("command line", "--implicit-tolerances",
                        limits::kLinearTolerance.refusal(t));
-  if (o.size && !limits::kGridSize.contains(*o.size))
-    throw InputError("command line", "--size", limits::kGridSize.refusal(*o.size));
   if (o.workers && (*o.workers < 1 || *o.workers > kMaxTradeoffWorkers))
     throw InputError("command line", "--workers",
                      "must be in [1, " + std::to_string(kMaxTradeoffWorkers) + "], got " +
@@ -120,19 +118,23 @@ TradeTable measure_trade(const Scene& shipped, const std::string& scene_file,
                           [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
 }
 
+Scene sized_scene(Scene scene, const std::string& scene_path, const std::optional<int>& size) {
+  if (!size) return scene;
+  if (!limits::kGridSize.contains(*size))
+    throw InputError("command line", "--size", limits::kGridSize.refusal(*size));
+  if (!scene.grid)
+    throw InputError("command line", "--size",
+                     scene_path + " is not a grid scene: it has no N x N to resize to");
+  try {
+    return resized_grid(scene, *size);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("command line", "--size", e.what());
+  }
+}
+
 int run_tradeoff(const TradeoffOptions& o) {
   const TradeoffPlan plan = tradeoff_plan(o);
-  Scene scene = load_scene(o.scene);
-  if (o.size) {
-    if (!scene.grid)
-      throw InputError("command line", "--size",
-                       o.scene + " is not a grid scene: it has no N x N to resize to");
-    try {
-      scene = resized_grid(scene, *o.size);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("command line", "--size", e.what());
-    }
-  }
+  Scene scene = sized_scene(load_scene(o.scene), o.scene, o.size);
   if (o.out.empty()) throw InputError("command line", "--out", "must name a file");
   check_writable(o.out);
 

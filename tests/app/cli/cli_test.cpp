@@ -94,6 +94,26 @@ TEST_F(Cli, OptionsOverrideTheScene) {
   EXPECT_EQ(doc.at("steps").get<long>(), 5);
 }
 
+// --size N: the cloth resized as the window's --size does (same width, same
+// mass; docs/scenes.md "Resizing a grid"): what bench/peers/run compares with
+// Blender's cloth at 32², 64² and 128².
+TEST_F(Cli, SizeResizesTheClothAndIsRangeChecked) {
+  const Outcome r = run({"simulate", scene_asset("table_drape"), "--seconds", "0", "--size", "6",
+                         "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  const json doc = read_result();
+  EXPECT_EQ(doc.at("nodes").get<int>(), 36);
+  // table_drape's corners: origin (-0.6, 1, -0.6), 31 x 0.0387 m a side.
+  const json& x = doc.at("positions");
+  EXPECT_DOUBLE_EQ(x[0].at(0).get<double>(), -0.6);
+  EXPECT_NEAR(x[35].at(0).get<double>(), -0.6 + 31 * 0.0387, 1e-12);
+  EXPECT_NEAR(x[35].at(2).get<double>(), -0.6 + 31 * 0.0387, 1e-12);
+  fs::remove(result_path());
+  expect_input_error({"simulate", scene_asset("table_drape"), "--seconds", "0", "--size", "1",
+                      "--out", result_path()},
+                     {"--size", "must be in [2, 1024]"});
+}
+
 TEST_F(Cli, PrecisionOverridesTheSceneAndIsRefusedByNameWhereItCannotGo) {
   const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--precision",
                          "float", "--out", result_path()});
