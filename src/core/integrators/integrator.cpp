@@ -37,7 +37,8 @@ std::string integrator_names() {
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
                                             double min_step_fraction, int iterations,
-                                            double linear_tolerance) {
+                                            double linear_tolerance,
+                                            ImplicitPreconditioner preconditioner) {
   switch (kind) {
     case IntegratorKind::network:
       return make_network_propagation(net);
@@ -48,7 +49,7 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
     case IntegratorKind::rk4:
       return make_runge_kutta4(net);
     case IntegratorKind::implicit_euler:
-      return make_implicit_euler(net, min_step_fraction, linear_tolerance);
+      return make_implicit_euler(net, min_step_fraction, linear_tolerance, preconditioner);
     case IntegratorKind::projective:
       return make_projective(net, iterations);
   }

@@ -81,6 +81,10 @@ struct SolverSettings {
   // benchmark runs the portable kernel on an AVX-512 machine too. Not a scene
   // field: a scene's results do not depend on it beyond the last bits.
   SpringKernel kernel = SpringKernel::automatic;
+  // What preconditions the implicit_euler step's conjugate gradient. Not a
+  // scene field, as `kernel`: a test or a benchmark compares them; the step
+  // solves the same system to the same tolerance whichever it is.
+  ImplicitPreconditioner implicit_preconditioner = ImplicitPreconditioner::automatic;
 };
 
 // Why `precision` cannot go with `integrator`, or "" when it can. The implicit
@@ -142,6 +146,12 @@ inline void validate(const SolverSettings& s) {
     fail("kernel", std::string("one of ") + kKernelNames, static_cast<double>(s.kernel));
   const std::string missing = kernel_unavailable(s.kernel);
   if (!missing.empty()) throw std::invalid_argument("solver.kernel avx512: " + missing);
+  if (s.implicit_preconditioner != ImplicitPreconditioner::automatic &&
+      s.implicit_preconditioner != ImplicitPreconditioner::laplacian &&
+      s.implicit_preconditioner != ImplicitPreconditioner::multigrid &&
+      s.implicit_preconditioner != ImplicitPreconditioner::jacobi)
+    fail("implicit_preconditioner", std::string("one of ") + kImplicitPreconditionerNames,
+         static_cast<double>(s.implicit_preconditioner));
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));
