@@ -39,7 +39,9 @@ std::string integrator_names() {
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
                                             double min_step_fraction, int iterations,
-                                            double linear_tolerance, bool implicit_damping) {
+                                            double linear_tolerance,
+                                            ImplicitPreconditioner preconditioner,
+                                            bool implicit_damping) {
   if (implicit_damping && kind != IntegratorKind::network)
     throw std::invalid_argument(std::string("solver.damping \"implicit\" is for the network "
                                             "integrator, not ") +
@@ -54,7 +56,7 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
     case IntegratorKind::rk4:
       return make_runge_kutta4(net);
     case IntegratorKind::implicit_euler:
-      return make_implicit_euler(net, min_step_fraction, linear_tolerance);
+      return make_implicit_euler(net, min_step_fraction, linear_tolerance, preconditioner);
     case IntegratorKind::projective:
       return make_projective(net, iterations);
   }

@@ -23,6 +23,16 @@ inline constexpr int kDefaultProjectiveIterations = 10;
 // (docs/network.md, "Large steps").
 inline constexpr double kDefaultLinearTolerance = 1e-10;
 
+// What preconditions the implicit step's conjugate gradient (docs/network.md,
+// "The implicit step's preconditioner"). automatic: the Laplacian from
+// kMinLaplacianNodes nodes, Jacobi below. laplacian: the large steps'
+// prefactored matrix M + h^2 L (spring_laplacian.h) between two block-Jacobi
+// sweeps. multigrid: the algebraic multigrid of the step's own matrix (Jacobi
+// below its own size limits). jacobi: the diagonal. The step is backward Euler to
+// the CG tolerance whichever it is; only its cost and last bits differ.
+enum class ImplicitPreconditioner { automatic, laplacian, multigrid, jacobi };
+inline constexpr const char* kImplicitPreconditionerNames = "auto, laplacian, multigrid, jacobi";
+
 const char* to_string(IntegratorKind k);
 std::optional<IntegratorKind> parse_integrator(const std::string& name);
 // "network, explicit_euler, ..." for error messages.
@@ -67,13 +77,16 @@ class Integrator {
 // Scratch is sized for `net`; the integrator may then step any network of that size.
 // `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
 // `iterations` the projective step's local-global iterations; `linear_tolerance`
-// the implicit step's conjugate gradient tolerance (relative residual);
-// `implicit_damping` the network step's damping taken spring by spring
-// (spring_damping.h; the other integrators refuse it).
-std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetwork& net,
-                                            double min_step_fraction = kDefaultMinStepFraction,
-                                            int iterations = kDefaultProjectiveIterations,
-                                            double linear_tolerance = kDefaultLinearTolerance,
-                                            bool implicit_damping = false);
+// the implicit step's conjugate gradient tolerance (relative residual) and
+// `preconditioner` what preconditions it; `implicit_damping` the network
+// step's damping taken spring by spring (spring_damping.h; the other
+// integrators refuse it).
+std::unique_ptr<Integrator> make_integrator(
+    IntegratorKind kind, const ClothNetwork& net,
+    double min_step_fraction = kDefaultMinStepFraction,
+    int iterations = kDefaultProjectiveIterations,
+    double linear_tolerance = kDefaultLinearTolerance,
+    ImplicitPreconditioner preconditioner = ImplicitPreconditioner::automatic,
+    bool implicit_damping = false);
 
 }  // namespace neurocloth

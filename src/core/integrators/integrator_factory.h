@@ -12,6 +12,7 @@ std::unique_ptr<Integrator> make_explicit_euler(const ClothNetwork& net);
 std::unique_ptr<Integrator> make_velocity_verlet(const ClothNetwork& net);
 std::unique_ptr<Integrator> make_runge_kutta4(const ClothNetwork& net);
 std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double min_step_fraction,
-                                                double linear_tolerance);
+                                                double linear_tolerance,
+                                                ImplicitPreconditioner preconditioner);
 std::unique_ptr<Integrator> make_projective(const ClothNetwork& net, int iterations);
 }  // namespace neurocloth

@@ -136,12 +136,7 @@ class Projective final : public Integrator {
   // as preconditioner, exactly, in a few iterations.
   void refactor_if_needed(const ClothNetwork& net, double h) {
     const SpringLayer& L = net.springs;
-    node_weight_.resize(n_);
-    for (std::size_t i = 0; i < n_; ++i)
-      node_weight_[i] = 1.0 / net.masses.inverse_mass[i];
-    spring_weight_.resize(L.size());
-    for (std::size_t s = 0; s < L.size(); ++s)
-      spring_weight_[s] = h * h * (L.stiffness[s] + extra_stiffness(net, s)) + h * L.damping[s];
+    large_step_weights(net, h, node_weight_, spring_weight_);
     near_ = false;
     near_converged_ = true;
     if (laplacian_.same_as(node_weight_, spring_weight_, net.masses.free)) return;
@@ -153,13 +148,6 @@ class Projective final : public Integrator {
     }
     rho_ = 0;  // another matrix converges at another rate
     factored_ = laplacian_.factor(L, node_weight_, spring_weight_, net.masses.free);
-  }
-
-  static double extra_stiffness(const ClothNetwork& net, std::size_t s) {
-    const SpringFunction& f = net.springs.function;
-    return f.kind == SpringFunctionKind::stiffening
-               ? net.springs.stiffness[s] * (f.stiffening_factor - 1.0)
-               : 0.0;
   }
 
   // The inertial displacement y - x0 = h v0 + h^2 M^-1 (f_other + m g) on free

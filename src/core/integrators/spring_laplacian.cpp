@@ -163,4 +163,17 @@ int SpringLaplacian::solve3_near(const SpringLayer& layer, const std::vector<dou
   return std::sqrt(dot(r_, r_)) <= tolerance * b_norm ? max_iterations : -1;
 }
 
+void large_step_weights(const ClothNetwork& net, double h, std::vector<double>& node_weight,
+                        std::vector<double>& spring_weight) {
+  const SpringLayer& L = net.springs;
+  node_weight.resize(net.node_count());
+  for (std::size_t i = 0; i < node_weight.size(); ++i)
+    node_weight[i] = 1.0 / net.masses.inverse_mass[i];
+  const bool stiffening = L.function.kind == SpringFunctionKind::stiffening;
+  const double extra = stiffening ? L.function.stiffening_factor - 1.0 : 0.0;
+  spring_weight.resize(L.size());
+  for (std::size_t s = 0; s < L.size(); ++s)
+    spring_weight[s] = h * h * (L.stiffness[s] + L.stiffness[s] * extra) + h * L.damping[s];
+}
+
 }  // namespace neurocloth

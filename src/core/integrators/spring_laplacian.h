@@ -72,4 +72,11 @@ class SpringLaplacian {
   std::vector<double> node_weight_, spring_weight_, free_;
 };
 
+// The weights of a large step h on `net`, the matrix both large-step
+// integrators factor: node_weight the masses, spring_weight h^2 (k + k') + h d
+// per spring, k' the stiffening function's extra stiffness beyond its threshold
+// (projective's global step; implicit_euler's preconditioner).
+void large_step_weights(const ClothNetwork& net, double h, std::vector<double>& node_weight,
+                        std::vector<double>& spring_weight);
+
 }  // namespace neurocloth

@@ -90,7 +90,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
       settings_(validated(settings)),  // before the integrator is made from them
       integrator_(make_integrator(settings.integrator, net_,
                                   settings.adaptive_settings.min_step_fraction, settings.iterations,
-                                  settings.linear_tolerance,
+                                  settings.linear_tolerance, settings.implicit_preconditioner,
                                   settings.damping == DampingMode::implicit_springwise)) {
   if (initial.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
@@ -173,7 +173,8 @@ void Simulation::set_solver_settings(const SolverSettings& settings) {
   // Made before anything changes too: an integrator may refuse this cloth.
   std::unique_ptr<Integrator> integrator = make_integrator(
       settings.integrator, net_, settings.adaptive_settings.min_step_fraction, settings.iterations,
-      settings.linear_tolerance, settings.damping == DampingMode::implicit_springwise);
+      settings.linear_tolerance, settings.implicit_preconditioner,
+      settings.damping == DampingMode::implicit_springwise);
   settings_ = settings;
   set_spring_arithmetic(run_.inputs, settings_);
   if (ctx_.threads.size() != settings_.threads) ctx_.threads = OwnedStepThreads(settings_.threads);

@@ -87,6 +87,10 @@ struct SolverSettings {
   // spring_damping.h), which lifts the damping's bound on the step. The
   // network integrator only; docs/stability.md, "Damping taken implicitly".
   DampingMode damping = DampingMode::explicit_force;
+  // What preconditions the implicit_euler step's conjugate gradient. Not a
+  // scene field, as `kernel`: a test or a benchmark compares them; the step
+  // solves the same system to the same tolerance whichever it is.
+  ImplicitPreconditioner implicit_preconditioner = ImplicitPreconditioner::automatic;
 };
 
 // Why `precision` cannot go with `integrator`, or "" when it can. The implicit
@@ -154,6 +158,12 @@ inline void validate(const SolverSettings& s) {
     throw std::invalid_argument(
         std::string("solver.damping \"implicit\" is for the network integrator, not ") +
         to_string(s.integrator));
+  if (s.implicit_preconditioner != ImplicitPreconditioner::automatic &&
+      s.implicit_preconditioner != ImplicitPreconditioner::laplacian &&
+      s.implicit_preconditioner != ImplicitPreconditioner::multigrid &&
+      s.implicit_preconditioner != ImplicitPreconditioner::jacobi)
+    fail("implicit_preconditioner", std::string("one of ") + kImplicitPreconditionerNames,
+         static_cast<double>(s.implicit_preconditioner));
   if (s.threads < 1 || s.threads > kMaxStepThreads)
     fail("threads", "in [1, " + std::to_string(kMaxStepThreads) + "]",
          static_cast<double>(s.threads));

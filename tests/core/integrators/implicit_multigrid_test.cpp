@@ -116,7 +116,13 @@ TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
   ClothNetwork net = sim.network();
   ASSERT_GE(net.node_count(), ImplicitMultigrid::kMinNodes);
   const ClothState in = sim.state();
-  const auto used = make_integrator(IntegratorKind::implicit_euler, net);
+  // The multigrid named: from 48 x 48 the automatic choice is the Laplacian.
+  auto make = [](const ClothNetwork& of) {
+    return make_integrator(IntegratorKind::implicit_euler, of, kDefaultMinStepFraction,
+                           kDefaultProjectiveIterations, kDefaultLinearTolerance,
+                           ImplicitPreconditioner::multigrid);
+  };
+  const auto used = make(net);
   NodeVectors f(net.node_count());
   ClothState out = in, fresh_out = in;
   net.net_forces(in, f);
@@ -126,7 +132,7 @@ TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
     k *= 3;
   net.net_forces(in, f);
   const StepReport report = used->step(net, ForceInputs{}, in, f, kStep, out);
-  const auto fresh = make_integrator(IntegratorKind::implicit_euler, net);
+  const auto fresh = make(net);
   const StepReport fresh_report = fresh->step(net, ForceInputs{}, in, f, kStep, fresh_out);
   EXPECT_EQ(report.cg_iterations, fresh_report.cg_iterations);
   for (std::size_t i = 0; i < in.size(); ++i)
