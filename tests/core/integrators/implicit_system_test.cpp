@@ -21,7 +21,7 @@
 namespace neurocloth {
 namespace {
 
-constexpr double kStep = 1.0 / 60;
+constexpr double kFrameStep = 1.0 / 60;
 
 // The table drape at n x n, 0.5 s in: fallen onto the table and folding over
 // its edges, so its springs point every way.
@@ -29,7 +29,7 @@ Simulation draped(int n, ImplicitPreconditioner preconditioner, double tolerance
   Scene scene = resized_grid(load_scene(assets_directory() + "/scenes/table_drape.json"), n);
   scene.solver.integrator = IntegratorKind::implicit_euler;
   scene.solver.adaptive = false;
-  scene.solver.dt = kStep;
+  scene.solver.dt = kFrameStep;
   scene.solver.linear_tolerance = tolerance;
   scene.solver.implicit_preconditioner = preconditioner;
   Simulation sim = scene.make_simulation();
@@ -54,19 +54,19 @@ TEST(ImplicitLaplacian, PreconditionedSolveMatchesTheOthers) {
   std::vector<double> b(3 * net.node_count());
   for (std::size_t i = 0; i < net.node_count(); ++i)
     for (int c = 0; c < 3; ++c)
-      b[3 * i + c] = net.masses.free[i] * kStep / net.masses.inverse_mass[i] *
+      b[3 * i + c] = net.masses.free[i] * kFrameStep / net.masses.inverse_mass[i] *
                      (net.gravity[c] + std::sin(0.37 * static_cast<double>(3 * i + c)));
   std::vector<double> node_weight, spring_weight;
-  large_step_weights(net, kStep, node_weight, spring_weight);
+  large_step_weights(net, kFrameStep, node_weight, spring_weight);
   SpringLaplacian laplacian;
   ASSERT_TRUE(laplacian.factor(net.springs, node_weight, spring_weight, net.masses.free));
   ImplicitMultigrid multigrid;
-  ASSERT_TRUE(multigrid.build(net, system, 1.0, kStep, kStep * kStep));
+  ASSERT_TRUE(multigrid.build(net, system, 1.0, kFrameStep, kFrameStep * kFrameStep));
 
   auto solve = [&](const ImplicitMultigrid* mg, const SpringLaplacian* lap,
                    std::vector<double>& x) {
     x.assign(b.size(), 0.0);
-    const CgResult r = system.solve(net, 1.0, kStep, kStep * kStep, b, x, 1e-12, 100000, mg, lap);
+    const CgResult r = system.solve(net, 1.0, kFrameStep, kFrameStep * kFrameStep, b, x, 1e-12, 100000, mg, lap);
     EXPECT_TRUE(r.converged);
     return r.iterations;
   };
