@@ -66,7 +66,8 @@ TEST(ImplicitLaplacian, PreconditionedSolveMatchesTheOthers) {
   auto solve = [&](const ImplicitMultigrid* mg, const SpringLaplacian* lap,
                    std::vector<double>& x) {
     x.assign(b.size(), 0.0);
-    const CgResult r = system.solve(net, 1.0, kFrameStep, kFrameStep * kFrameStep, b, x, 1e-12, 100000, mg, lap);
+    const CgResult r =
+        system.solve(net, 1.0, kFrameStep, kFrameStep * kFrameStep, b, x, 1e-12, 100000, mg, lap);
     EXPECT_TRUE(r.converged);
     return r.iterations;
   };
