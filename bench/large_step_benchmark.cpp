@@ -15,6 +15,24 @@ namespace {
 
 constexpr double kSeconds = 0.5;
 
+// Whole runs of `seconds` from the scene's start (the factor is made inside,
+// timed as a user waits): s per simulated s, and CG (or local-global)
+// iterations a step.
+void time_runs(benchmark::State& state, const Scene& scene, double seconds) {
+  long steps = 0, iterations = 0;
+  for (auto _ : state) {
+    Simulation sim = scene.make_simulation();
+    if (sim.advance(seconds) != RunStatus::ok) state.SkipWithError("the run did not finish ok");
+    steps += sim.steps();
+    iterations += sim.cg_iterations();
+  }
+  state.counters["s_per_simulated_s"] =
+      benchmark::Counter(seconds * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["iterations_per_step"] =
+      static_cast<double>(iterations) / static_cast<double>(steps);
+}
+
 void BM_LargeStep(benchmark::State& state, IntegratorKind kind,
                   double linear_tolerance = kDefaultLinearTolerance) {
   Scene scene = resized_grid(load_scene(std::string(NEUROCLOTH_SCENES) + "/hanging.json"),
@@ -23,18 +41,7 @@ void BM_LargeStep(benchmark::State& state, IntegratorKind kind,
   scene.solver.adaptive = false;
   scene.solver.dt = 1.0 / 64;
   scene.solver.linear_tolerance = linear_tolerance;
-  long steps = 0, iterations = 0;
-  for (auto _ : state) {
-    Simulation sim = scene.make_simulation();  // the factor is made inside, timed as a user waits
-    if (sim.advance(kSeconds) != RunStatus::ok) state.SkipWithError("the run did not finish ok");
-    steps += sim.steps();
-    iterations += sim.cg_iterations();
-  }
-  state.counters["s_per_simulated_s"] =
-      benchmark::Counter(kSeconds * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["iterations_per_step"] =
-      static_cast<double>(iterations) / static_cast<double>(steps);
+  time_runs(state, scene, kSeconds);
 }
 
 void Sizes(benchmark::internal::Benchmark* b) {
@@ -60,19 +67,7 @@ void BM_TableDrape(benchmark::State& state, IntegratorKind kind, double dt, doub
   scene.solver.dt = dt;
   scene.solver.linear_tolerance = linear_tolerance;
   scene.solver.implicit_preconditioner = preconditioner;
-  long steps = 0, iterations = 0;
-  for (auto _ : state) {
-    Simulation sim = scene.make_simulation();
-    if (sim.advance(kDrapeSeconds) != RunStatus::ok)
-      state.SkipWithError("the run did not finish ok");
-    steps += sim.steps();
-    iterations += sim.cg_iterations();
-  }
-  state.counters["s_per_simulated_s"] =
-      benchmark::Counter(kDrapeSeconds * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["iterations_per_step"] =
-      static_cast<double>(iterations) / static_cast<double>(steps);
+  time_runs(state, scene, kDrapeSeconds);
 }
 
 void Drape(benchmark::internal::Benchmark* b) {
