@@ -53,6 +53,63 @@ inline void damp_range(const double* damping, const double* w, const double* fre
   }
 }
 
+// A row's neighbours: the chunk's spring j joins nodes a + j and b + j, O
+// apart, so spring j + O starts where spring j ends. Springs j with j / O even
+// share no node, nor do those with j / O odd. Tile by tile (a whole number of
+// 2 O springs), each half's impulses are computed in one contiguous vector
+// pass, masked to the half (none reads what another writes), then added in a
+// pass over the nodes, where a node receives at most one of them.
+template <int O>
+void damp_neighbours(const double* damping, const double* w, const double* free, const double* px,
+                     const double* py, const double* pz, double* vx, double* vy, double* vz,
+                     std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b,
+                     double h) {
+  constexpr double kMin2 = kMinSpringLength * kMinSpringLength;
+  constexpr std::int32_t kTile = 2 * O * (32 / O);
+  // The impulses s x_ab of a tile's springs at [O, O + n), zeros around.
+  alignas(64) double ix[kTile + 2 * O] = {}, iy[kTile + 2 * O] = {}, iz[kTile + 2 * O] = {};
+  const std::int32_t low = std::min(a, b);
+  // A spring's low end gets sign w (s x_ab), its high end the opposite.
+  const double sign = a < b ? -1.0 : 1.0;
+  for (std::int32_t j0 = 0; j0 < count; j0 += kTile) {
+    const std::int32_t n = std::min(kTile, count - j0);
+    const double* const d = damping + first + j0;
+    const double *const pxa = px + a + j0, *const pya = py + a + j0, *const pza = pz + a + j0;
+    const double *const pxb = px + b + j0, *const pyb = py + b + j0, *const pzb = pz + b + j0;
+    const double *const wa_ = w + a + j0, *const wb_ = w + b + j0;
+    const double *const fa = free + a + j0, *const fb = free + b + j0;
+    const double *const vxa = vx + a + j0, *const vya = vy + a + j0, *const vza = vz + a + j0;
+    const double *const vxb = vx + b + j0, *const vyb = vy + b + j0, *const vzb = vz + b + j0;
+    for (std::int32_t half = 0; half < 2; ++half) {
+      for (std::int32_t k = 0; k < n; ++k) {
+        const double dx = pxb[k] - pxa[k], dy = pyb[k] - pya[k], dz = pzb[k] - pza[k];
+        const double len2 = dx * dx + dy * dy + dz * dz;
+        const double W = fa[k] * wa_[k] + fb[k] * wb_[k];
+        const bool on = len2 > kMin2 && (k / O) % 2 == half;
+        const double hd = on ? h * d[k] : 0.0;
+        const double safe_len2 = on ? len2 : 1.0;
+        const double rel = (vxb[k] - vxa[k]) * dx + (vyb[k] - vya[k]) * dy + (vzb[k] - vza[k]) * dz;
+        const double s = -rel * hd / ((1.0 + hd * W) * safe_len2);
+        ix[O + k] = s * dx;
+        iy[O + k] = s * dy;
+        iz[O + k] = s * dz;
+      }
+      for (std::int32_t k = n; k < n + O; ++k)
+        ix[O + k] = iy[O + k] = iz[O + k] = 0.0;
+      // Node low + j0 + t: the low end of spring t, the high end of t - O.
+      double *const ux = vx + low + j0, *const uy = vy + low + j0, *const uz = vz + low + j0;
+      const double *const wl = w + low + j0, *const fl = free + low + j0;
+#pragma GCC ivdep
+      for (std::int32_t t = 0; t < n + O; ++t) {
+        const double g = sign * fl[t] * wl[t];
+        ux[t] += g * (ix[O + t] - ix[t]);
+        uy[t] += g * (iy[O + t] - iy[t]);
+        uz[t] += g * (iz[O + t] - iz[t]);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void damp_springs(const ClothNetwork& net, const ClothState& p, double h, double* vx, double* vy,
@@ -66,15 +123,20 @@ void damp_springs(const ClothNetwork& net, const ClothState& p, double h, double
   spring_chunks::for_each_chunk(
       L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
         const std::int32_t o = b > a ? b - a : a - b;
-        if (o < kBlock) {
-          // A row's neighbours: spring j + o starts where j ends. Springs j
-          // with j / o even share no node, nor do those with j / o odd: each
-          // half in turn, so no update waits for the one before it.
-          for (std::int32_t half = 0; half < 2; ++half)
-            for (std::int32_t base = half * o; base < count; base += 2 * o)
-              damp_range<false>(damping, w, free, px, py, pz, vx, vy, vz, first, a, b, base,
-                                std::min(base + o, count), h);
-          return;
+        switch (o) {
+#define NEUROCLOTH_NEIGHBOURS(O) \
+  case O:                        \
+    return damp_neighbours<O>(damping, w, free, px, py, pz, vx, vy, vz, first, count, a, b, h);
+          NEUROCLOTH_NEIGHBOURS(1)
+          NEUROCLOTH_NEIGHBOURS(2)
+          NEUROCLOTH_NEIGHBOURS(3)
+          NEUROCLOTH_NEIGHBOURS(4)
+          NEUROCLOTH_NEIGHBOURS(5)
+          NEUROCLOTH_NEIGHBOURS(6)
+          NEUROCLOTH_NEIGHBOURS(7)
+#undef NEUROCLOTH_NEIGHBOURS
+          default:
+            break;
         }
         // Blocks of 8 in order: within one, no spring's end is another's.
         std::int32_t j = 0;

@@ -21,9 +21,11 @@
 // The springs are visited in the force sweep's chunk order (spring_chunks.h):
 // in a chunk whose ends are 8 or more nodes apart, 8 consecutive springs share
 // no node and are updated as one vector with contiguous loads; a row's
-// neighbours (ends o = 1 or 2 apart) in two halves, the springs j with j / o
-// even, then odd, none of which waits for another. The order is fixed, so
-// every run gives the same bits; the sweep runs on the calling thread.
+// neighbours (ends o < 8 apart), tile by tile (about 64 springs), in two
+// halves: the springs j with j / o even, then odd, none of which waits for
+// another, so each half's impulses are one vector pass and their sums one more.
+// The order is fixed, so every run gives the same bits; the sweep runs on the
+// calling thread.
 #include <string>
 
 #include "core/network/cloth_network.h"
