@@ -38,11 +38,19 @@ void CommandQueue::wait_until_done() const {
   done_.wait(lock, [&] { return done_count_ >= target || stopped_; });
 }
 
+bool CommandQueue::wait_until_done_for(std::chrono::duration<double> timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const long target = posted_;
+  return done_.wait_for(lock, timeout, [&] { return done_count_ >= target || stopped_; }) &&
+         done_count_ >= target;
+}
+
 void CommandQueue::stop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopped_ = true;
   }
+  stopping_.store(true, std::memory_order_relaxed);
   work_.notify_all();
   done_.notify_all();
 }

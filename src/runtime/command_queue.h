@@ -2,6 +2,7 @@
 // The commands posted to the simulation thread, in order. Posting takes the
 // mutex only to push; the simulation thread takes the whole queue at once
 // between steps, so neither ever waits for the other's work.
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -25,7 +26,12 @@ class CommandQueue {
   void wait_for_work(std::chrono::duration<double> timeout);
   // Blocks until every command posted before the call is applied (or stop()).
   void wait_until_done() const;
+  // The same for at most `timeout`: false when commands were still pending then.
+  bool wait_until_done_for(std::chrono::duration<double> timeout) const;
   void stop();
+  // True once stop() was called: read between steps by a long command, which
+  // then stops early rather than hold the thread's stop (and join) for minutes.
+  bool stopping() const { return stopping_.load(std::memory_order_relaxed); }
 
  private:
   mutable std::mutex mutex_;
@@ -34,6 +40,7 @@ class CommandQueue {
   std::deque<SimCommand> queue_;
   long posted_ = 0, done_count_ = 0;
   bool stopped_ = false;
+  std::atomic<bool> stopping_{false};  // stopped_, readable without the mutex
 };
 
 }  // namespace neurocloth

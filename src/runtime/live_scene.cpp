@@ -293,8 +293,8 @@ std::string LiveScene::on(const SingleStep&) {
 }
 
 std::string LiveScene::on(const Advance& c) {
-  // One Advance holds every other command (and the thread's stop) until it is
-  // done: a frame asks for 1/60 s; more than a second is refused.
+  // One Advance holds every other command until it is done (only the thread's
+  // stop cuts it short): a frame asks for 1/60 s; more than a second is refused.
   constexpr double kLongestAdvance = 1.0;  // s
   if (!(c.seconds >= 0 && c.seconds <= kLongestAdvance))
     return "Advance: seconds must lie in [0, 1] (got " + number(c.seconds) + ")";
@@ -311,8 +311,14 @@ std::string LiveScene::on(const Advance& c) {
   const double steps = std::floor(owed_ / dt + 1e-9);
   if (steps < 1) return {};
   const double start = sim.time();
+  if (stop_) sim.set_interrupt([this](const Simulation&) { return stop_(); });
   sim.advance(steps * dt);
+  sim.set_interrupt({});
   sim.check_now();
+  if (sim.interrupted()) {
+    owed_ = 0;
+    return "Advance: cut short at t = " + number(sim.time()) + " s (the thread is stopping)";
+  }
   owed_ -= steps * dt;
   // Behind (a step budget that ran out, a divergence rolled back): the debt is
   // dropped, as a realtime run re-syncs, rather than chased frame after frame.

@@ -2,6 +2,7 @@
 // The scene the simulation thread runs, and what the user has changed about it
 // since it was loaded. Only the simulation thread touches it; every command is
 // checked here, and a refused command leaves everything as it was.
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -54,6 +55,10 @@ class LiveScene {
   // (it gains energy: a divergence is coming). docs/stability.md.
   std::string stability_notice();
 
+  // Asked between the frames of an Advance: true cuts it short (the thread is
+  // stopping; an Advance at the step's floor can otherwise hold it for minutes).
+  void set_stop_check(std::function<bool()> stop) { stop_ = std::move(stop); }
+
  private:
   struct Run;  // a scene with everything built from it, replaced as a whole
 
@@ -96,6 +101,7 @@ class LiveScene {
   // Advance: simulated seconds asked for but not yet stepped (less than one dt
   // after each Advance). Nothing is owed for a pause or across a restart.
   double owed_ = 0;
+  std::function<bool()> stop_;
 };
 
 }  // namespace neurocloth

@@ -93,6 +93,7 @@ struct SimulationThread::Impl {
   }
 
   void start() {
+    live.set_stop_check([this] { return queue.stopping(); });
     generation = live.generation();
     publish();
     publish_ranges();
@@ -118,6 +119,7 @@ struct SimulationThread::Impl {
 
   void apply(const std::deque<SimCommand>& batch) {
     for (const SimCommand& c : batch) {
+      if (queue.stopping()) break;  // the rest is dropped, as a stop drops the queue
       std::string why = std::holds_alternative<Advance>(c) && !options.lockstep
                             ? "Advance: only in lockstep mode (this thread paces itself)"
                             : live.apply(c);
@@ -307,6 +309,10 @@ SimulationStatus SimulationThread::status() const {
 
 void SimulationThread::wait_for_commands() const {
   impl_->queue.wait_until_done();
+}
+
+bool SimulationThread::wait_for_commands(std::chrono::duration<double> timeout) const {
+  return impl_->queue.wait_until_done_for(timeout);
 }
 
 std::vector<ParameterRange> SimulationThread::parameter_ranges() const {

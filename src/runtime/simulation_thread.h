@@ -6,6 +6,7 @@
 // copy. It runs in real time when it can keep up, and when it cannot it says so
 // (simulated seconds per wall second) instead of stalling anyone; or, in
 // lockstep, only as far as Advance commands take it.
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -79,7 +80,9 @@ class SimulationThread {
   };
   explicit SimulationThread(Scene scene, Options options);
   explicit SimulationThread(Scene scene) : SimulationThread(std::move(scene), Options{}) {}
-  ~SimulationThread();  // stops and joins
+  // Stops and joins: the command being applied ends first (an Advance is cut
+  // short between frames), the rest of the queue is dropped.
+  ~SimulationThread();
   SimulationThread(const SimulationThread&) = delete;
   SimulationThread& operator=(const SimulationThread&) = delete;
 
@@ -90,6 +93,9 @@ class SimulationThread {
   // Blocks until every command posted so far has been taken (for tests and scripts).
   // Taken means applied (or refused): status() and latest() then show its effect.
   void wait_for_commands() const;
+  // The same for at most `timeout`: false when some were still pending then
+  // (a soak or script that must not wait forever on a costly command).
+  bool wait_for_commands(std::chrono::duration<double> timeout) const;
   // The ranges SetParameter checks against for the scene running now (they
   // change with LoadScene and LoadRules); like status(), a copy.
   std::vector<ParameterRange> parameter_ranges() const;

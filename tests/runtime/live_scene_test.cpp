@@ -277,6 +277,19 @@ TEST(LiveScene, PauseAndSingleStep) {
   EXPECT_EQ(live.simulation().steps(), 1);
 }
 
+// The thread's stop cuts a long Advance short between frames; nothing is owed
+// after it, and the next Advance runs whole.
+TEST(LiveScene, TheStopCheckCutsAnAdvanceShort) {
+  LiveScene live(test::asset_scene("hanging"));  // dt 1e-3 s
+  int asks = 0;
+  live.set_stop_check([&] { return ++asks == 5; });
+  EXPECT_TRUE(contains(live.apply(Advance{0.5}), "cut short at t = 0.005 s"));
+  EXPECT_EQ(live.simulation().steps(), 5);
+  live.set_stop_check({});
+  EXPECT_EQ(live.apply(Advance{0.1}), "");
+  EXPECT_EQ(live.simulation().steps(), 105);
+}
+
 TEST(LiveScene, ABrokenSceneOrRuleBaseLeavesTheRunAsItWas) {
   const std::string dir = test::scratch_dir().string();
   const std::string broken = dir + "/broken.json";

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -162,6 +164,43 @@ TEST(SimulationThreadLockstep, ADivergedRunStandsStillAndResetRestartsTheClock) 
   sim.wait_for_commands();
   EXPECT_EQ(sim.status().run, RunStatus::ok);
   EXPECT_EQ(sim.status().steps, 16);
+}
+
+}  // namespace
+}  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+// A wait with a timeout says whether the commands were applied: false while
+// the thread is held (here inside the clock it reads before it marks a batch
+// done), true once it is let go. No speed is involved: the thread cannot
+// finish while it is held, and the second wait's minute is a hang bound.
+TEST(SimulationThreadLockstep, AWaitWithATimeoutSaysWhetherTheCommandsWereApplied) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool hold = false;
+  SimulationThread::Options options = test::lockstep();
+  options.clock = [&] {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return !hold; });
+    return 0.0;
+  };
+  SimulationThread sim(test::asset_scene("hanging"), options);
+  EXPECT_TRUE(sim.wait_for_commands(std::chrono::seconds(60)));  // nothing pending
+  {
+    std::lock_guard<std::mutex> lock(m);
+    hold = true;
+  }
+  sim.post(Advance{0.01});
+  EXPECT_FALSE(sim.wait_for_commands(std::chrono::milliseconds(20)));
+  {
+    std::lock_guard<std::mutex> lock(m);
+    hold = false;
+  }
+  cv.notify_all();
+  EXPECT_TRUE(sim.wait_for_commands(std::chrono::seconds(60)));
+  EXPECT_EQ(sim.status().steps, 10);
 }
 
 }  // namespace

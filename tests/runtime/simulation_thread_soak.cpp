@@ -102,13 +102,14 @@ SimCommand random_command(std::mt19937_64& rng, int nodes, bool lockstep, const 
   };
   const int k = std::uniform_int_distribution<int>(0, 99)(rng);
   if (lockstep && k < 25) {
-    // Mostly short advances, sometimes a value the thread must refuse (below 0,
-    // above its 1 s limit, NaN). A valid long one is cut to 0.05 s: no command
-    // or stop interrupts an Advance, and 1 s at the smallest step (1e-5 s) is
-    // 1e5 steps that held one round for 7 minutes under TSan. The soak is after
-    // interleavings; long runs are the batch tests' (docs/threads.md, "Soak").
-    const double s = u(rng) < 0.1 ? random_value(rng) : 0.05 * u(rng);
-    return Advance{s > 0.05 && s <= 1.0 ? 0.05 : s};
+    // Mostly short advances (up to a frame at 100 Hz), sometimes a value the
+    // thread must refuse (below 0, above its 1 s limit, NaN). A valid long one
+    // is cut to 0.01 s: at the step's floor on a stiffened cloth under TSan
+    // even that is seconds, and a round that cannot drain its queue is cut at
+    // its clock. The soak is after interleavings; long runs are the batch
+    // tests' (docs/threads.md, "Soak").
+    const double s = u(rng) < 0.1 ? random_value(rng) : 0.01 * u(rng);
+    return Advance{s > 0.01 && s <= 1.0 ? 0.01 : s};
   }
   if (k < 40) return SetParameter{id(), random_value(rng)};
   if (k < 50) return ApplyForce{node(), u(rng) < 0.05 ? vec(1e300) : vec(5), vec(2)};
@@ -140,7 +141,9 @@ const char* mode_name(int mode) {
 }
 
 // One round: a fresh thread on `scene` in `mode`; returns the problems found.
-long soak_round(std::uint64_t seed, double seconds, const Files& files) {
+// `cut`: the queue was not drained within the round's time again.
+long soak_round(std::uint64_t seed, double seconds, const Files& files, bool* cut) {
+  *cut = false;
   std::mt19937_64 rng(seed);
   const int mode = std::uniform_int_distribution<int>(0, 2)(rng);
   const std::string scene = files.scenes[std::uniform_int_distribution<std::size_t>(0, 7)(rng)];
@@ -181,7 +184,8 @@ long soak_round(std::uint64_t seed, double seconds, const Files& files) {
       ++reads;
     }
   });
-  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(seconds));
   auto poster = [&](std::uint64_t poster_seed) {
     std::mt19937_64 r(poster_seed);
     while (Clock::now() < end) {
@@ -190,7 +194,10 @@ long soak_round(std::uint64_t seed, double seconds, const Files& files) {
         sim.post(random_command(r, nodes, options.lockstep, files));
         ++posted;
       }
-      if (std::uniform_int_distribution<int>(0, 9)(r) == 0) sim.wait_for_commands();
+      // Waits end with the round: a queue of Advances at the step's floor can
+      // take minutes under TSan (it once held CI past its 90 minutes).
+      if (std::uniform_int_distribution<int>(0, 9)(r) == 0)
+        sim.wait_for_commands(std::max(end - Clock::now(), Clock::duration::zero()));
       std::this_thread::sleep_for(
           std::chrono::microseconds(std::uniform_int_distribution<int>(0, 3000)(r)));
     }
@@ -198,11 +205,21 @@ long soak_round(std::uint64_t seed, double seconds, const Files& files) {
   std::thread a(poster, rng()), b(poster, rng());
   a.join();
   b.join();
-  sim.wait_for_commands();
+  // What is still queued gets twice the round's time; past that the round
+  // is cut at its clock: the thread is stopped (an Advance is cut between
+  // frames, the queue dropped), which the soak's own time then includes.
+  const bool drained = sim.wait_for_commands(std::chrono::duration<double>(2 * seconds));
   posting = false;
   reader.join();
 
   const SimulationStatus s = sim.status();
+  if (!drained) {
+    if (s.commands_applied > posted.load()) problem("applied more commands than were posted");
+    std::printf("  cut at its clock: %ld of %ld commands applied, %ld reads, run %s\n",
+                s.commands_applied, posted.load(), reads.load(), to_string(s.run));
+    *cut = true;
+    return problems.load();
+  }
   if (s.commands_applied != posted.load())
     problem("applied " + std::to_string(s.commands_applied) + " of " +
             std::to_string(posted.load()) + " commands");
@@ -211,7 +228,8 @@ long soak_round(std::uint64_t seed, double seconds, const Files& files) {
   sim.post(Reset{});
   sim.post(SetPaused{false});
   if (options.lockstep) sim.post(Advance{0.1});
-  sim.wait_for_commands();
+  if (!sim.wait_for_commands(std::chrono::seconds(60)))  // a hang, not a speed
+    problem("Reset and Advance not applied within 60 s");
   if (options.lockstep) {
     if (!(sim.status().time > 0)) problem("lockstep: no time after Reset and Advance");
   } else {
@@ -258,12 +276,14 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(seed), seconds, round_seconds);
   const Files files = write_files(dir);
   const auto start = Clock::now();
-  long problems = 0, rounds = 0;
+  long problems = 0, rounds = 0, cut_rounds = 0;
   // Round r runs with seed + r: any round can be replayed alone.
   do {
-    problems += soak_round(seed + static_cast<std::uint64_t>(rounds), round_seconds, files);
+    bool cut = false;
+    problems += soak_round(seed + static_cast<std::uint64_t>(rounds), round_seconds, files, &cut);
+    cut_rounds += cut ? 1 : 0;
     ++rounds;
   } while (std::chrono::duration<double>(Clock::now() - start).count() + round_seconds <= seconds);
-  std::printf("%ld rounds, %ld problems\n", rounds, problems);
+  std::printf("%ld rounds (%ld cut at their clock), %ld problems\n", rounds, cut_rounds, problems);
   return problems == 0 ? 0 : 1;
 }

@@ -16,6 +16,7 @@ namespace neurocloth {
 RunStatus Simulation::advance(double seconds) {
   budget_exhausted_ = false;
   interrupted_ = false;
+  steps_since_ask_ = 0;
   if (run_.status != RunStatus::ok || !(seconds > 0.0)) return run_.status;
   const double t_end = run_.time + seconds;
   const double dt = settings_.dt;
@@ -41,9 +42,11 @@ RunStatus Simulation::advance(double seconds) {
     const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
     const bool done = settings_.adaptive ? adaptive_frame(last ? t_end : run_.time + dt)
                                          : fixed_frame(last && !whole ? remaining : dt);
+    if (interrupted_) break;  // within the frame: time is where its last step left it
     if (!done && run_.status == RunStatus::ok) budget_exhausted_ = true;
     if (last && done && run_.status == RunStatus::ok) run_.time = t_end;  // no drift at the end
-    if (interrupt_ && !last && run_.status == RunStatus::ok && interrupt_(*this)) {
+    if (interrupt_ && !last && run_.status == RunStatus::ok &&
+        (steps_since_ask_ = 0, interrupt_(*this))) {
       interrupted_ = true;
       break;
     }
@@ -132,6 +135,16 @@ bool Simulation::adaptive_trial(StepController& tc, double frame_end) {
 
 bool Simulation::take_from_budget() {
   if (ctx_.budget_left <= 0) return false;
+  // A frame at the step's floor can be millions of steps (minutes): the
+  // interrupt is asked within it too, before every kStepsBetweenAsks + 1st.
+  constexpr long kStepsBetweenAsks = 1024;
+  if (interrupt_ && ++steps_since_ask_ > kStepsBetweenAsks) {
+    steps_since_ask_ = 1;
+    if (interrupt_(*this)) {
+      interrupted_ = true;
+      return false;
+    }
+  }
   --ctx_.budget_left;
   return true;
 }

@@ -69,10 +69,12 @@ class Simulation {
   // it ran out of step budget (the state is finite and healthy, only behind;
   // time() says how far it got). Cleared by the next advance().
   bool budget_exhausted() const { return budget_exhausted_; }
-  // Asked between frames (after every dt of simulated time) inside advance();
-  // when it returns true, advance() returns there, ok and short of the time
-  // asked: interrupted() (cleared by the next advance()). The steps taken are
-  // exactly those of an uninterrupted run. For progress lines and Ctrl-C.
+  // Asked between frames (after every dt of simulated time) inside advance(),
+  // and every 1024 steps within a frame (one at the step's floor can take
+  // minutes); when it returns true, advance() returns there, ok and short of
+  // the time asked: interrupted() (cleared by the next advance()). The steps
+  // taken are exactly those of an uninterrupted run, up to where it stopped.
+  // For progress lines, Ctrl-C and a thread's stop.
   void set_interrupt(std::function<bool(const Simulation&)> interrupt) {
     interrupt_ = std::move(interrupt);
   }
@@ -201,6 +203,7 @@ class Simulation {
   // The outcome of the last advance(), and callbacks: no step result depends on them.
   bool budget_exhausted_ = false;
   bool interrupted_ = false;
+  long steps_since_ask_ = 0;  // steps since the interrupt was last asked within a frame
   std::function<void(const StepEvent&)> observer_;
   std::function<bool(const Simulation&)> interrupt_;
 };

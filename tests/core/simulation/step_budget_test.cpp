@@ -98,6 +98,38 @@ TEST(StepBudget, BoundsTheSubstepsOfAGuardedFixedStep) {
   EXPECT_TRUE(sim.state().all_finite());
 }
 
+// One frame at the step's floor can be millions of steps: the interrupt is
+// asked within it too, every 1024 steps, and stops it there, healthy, on the
+// path of the uninterrupted run (the same bits as a budget of as many steps).
+TEST(StepBudget, AnInterruptIsAskedWithinOneLongFrame) {
+  for (const bool adaptive : {true, false}) {
+    SCOPED_TRACE(adaptive ? "adaptive" : "fixed, in substeps");
+    Scene scene = matrix_scene({1e7, 1e-5, 0.1, 0, 8});
+    scene.solver.adaptive = adaptive;
+    scene.solver.substep_above_cap = !adaptive;
+    scene.solver.step_budget = 1000000;
+    Simulation cut = scene.make_simulation();
+    int asks = 0;
+    cut.set_interrupt([&](const Simulation&) { return ++asks == 3; });
+    EXPECT_EQ(cut.advance(0.1), RunStatus::ok);  // one frame (dt = 0.1 s)
+    EXPECT_TRUE(cut.interrupted());
+    EXPECT_FALSE(cut.budget_exhausted());
+    EXPECT_EQ(asks, 3);
+    EXPECT_EQ(trials(cut), 3 * 1024);
+    EXPECT_GT(cut.time(), 0.0);
+    EXPECT_LT(cut.time(), 0.1);
+    EXPECT_EQ(cut.check_now(), RunStatus::ok);
+
+    scene.solver.step_budget = 3 * 1024 / 2;  // per dt asked, plus one dt
+    Simulation budgeted = scene.make_simulation();
+    budgeted.advance(0.1);
+    EXPECT_TRUE(budgeted.budget_exhausted());
+    EXPECT_EQ(trials(budgeted), trials(cut));
+    EXPECT_EQ(budgeted.time(), cut.time());
+    EXPECT_EQ(test::state_hash(budgeted.state()), test::state_hash(cut.state()));
+  }
+}
+
 // --- Bad input: a clear error naming the field; nothing lost. ---
 
 bool says(const std::invalid_argument& e, const std::string& part) {
