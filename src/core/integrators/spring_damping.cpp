@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/base/step_threads.h"
 #include "core/network/spring_chunks.h"
 
 namespace neurocloth {
@@ -110,40 +111,76 @@ void damp_neighbours(const double* damping, const double* w, const double* free,
   }
 }
 
-}  // namespace
-
-void damp_springs(const ClothNetwork& net, const ClothState& p, double h, double* vx, double* vy,
-                  double* vz) {
-  const SpringLayer& L = net.springs;
-  const double* const damping = L.damping.data();
+// Springs [first, first + count) of one chunk, in the order above.
+void damp_chunk(const ClothNetwork& net, const ClothState& p, double h, double* vx, double* vy,
+                double* vz, std::int32_t first, std::int32_t count, std::int32_t a,
+                std::int32_t b) {
+  const double* const damping = net.springs.damping.data();
   const double* const w = net.masses.inverse_mass.data();
   const double* const free = net.masses.free.data();
   const double *const px = p.x.data(), *const py = p.y.data(), *const pz = p.z.data();
-  constexpr std::int32_t kBlock = 8;
-  spring_chunks::for_each_chunk(
-      L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
-        const std::int32_t o = b > a ? b - a : a - b;
-        switch (o) {
+  const std::int32_t o = b > a ? b - a : a - b;
+  switch (o) {
 #define NEUROCLOTH_NEIGHBOURS(O) \
   case O:                        \
     return damp_neighbours<O>(damping, w, free, px, py, pz, vx, vy, vz, first, count, a, b, h);
-          NEUROCLOTH_NEIGHBOURS(1)
-          NEUROCLOTH_NEIGHBOURS(2)
-          NEUROCLOTH_NEIGHBOURS(3)
-          NEUROCLOTH_NEIGHBOURS(4)
-          NEUROCLOTH_NEIGHBOURS(5)
-          NEUROCLOTH_NEIGHBOURS(6)
-          NEUROCLOTH_NEIGHBOURS(7)
+    NEUROCLOTH_NEIGHBOURS(1)
+    NEUROCLOTH_NEIGHBOURS(2)
+    NEUROCLOTH_NEIGHBOURS(3)
+    NEUROCLOTH_NEIGHBOURS(4)
+    NEUROCLOTH_NEIGHBOURS(5)
+    NEUROCLOTH_NEIGHBOURS(6)
+    NEUROCLOTH_NEIGHBOURS(7)
 #undef NEUROCLOTH_NEIGHBOURS
-          default:
-            break;
-        }
-        // Blocks of 8 in order: within one, no spring's end is another's.
-        std::int32_t j = 0;
-        for (; j + kBlock <= count; j += kBlock)
-          damp_range<true>(damping, w, free, px, py, pz, vx, vy, vz, first, a, b, j, j + kBlock, h);
-        damp_range<false>(damping, w, free, px, py, pz, vx, vy, vz, first, a, b, j, count, h);
-      });
+    default:
+      break;
+  }
+  // Blocks of 8 in order: within one, no spring's end is another's.
+  constexpr std::int32_t kBlock = 8;
+  std::int32_t j = 0;
+  for (; j + kBlock <= count; j += kBlock)
+    damp_range<true>(damping, w, free, px, py, pz, vx, vy, vz, first, a, b, j, j + kBlock, h);
+  damp_range<false>(damping, w, free, px, py, pz, vx, vy, vz, first, a, b, j, count, h);
+}
+
+}  // namespace
+
+void damp_springs(const ClothNetwork& net, const ClothState& p, double h, double* vx, double* vy,
+                  double* vz, StepThreads* team) {
+  const SpringLayer& L = net.springs;
+  const std::size_t n = net.node_count();
+  if (n < kMinThreadedNodes) {  // one sweep in chunk order
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          damp_chunk(net, p, h, vx, vy, vz, first, count, a, b);
+        });
+    return;
+  }
+  // Three groups, each in chunk order: the springs with both ends below the
+  // split, those with both at or above it, then those across it. The first
+  // two share no node, so two threads take them at once; the split is the
+  // same whatever the team, so are the bits. In a chunk the groups are a
+  // prefix, a suffix and the middle (its ends a + j, b + j grow with j).
+  const auto split = static_cast<std::int32_t>(part_begin(n, 1, 2));
+  const auto group = [&](int which) {
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          const std::int32_t below = std::clamp(split - std::max(a, b), 0, count);
+          const std::int32_t above = std::clamp(split - std::min(a, b), 0, count);
+          const std::int32_t j0 = which == 0 ? 0 : which == 1 ? above : below;
+          const std::int32_t j1 = which == 0 ? below : which == 1 ? count : above;
+          if (j1 > j0) damp_chunk(net, p, h, vx, vy, vz, first + j0, j1 - j0, a + j0, b + j0);
+        });
+  };
+  if (team != nullptr && team->size() >= 2) {
+    team->run([&](int part) {
+      if (part < 2) group(part);
+    });
+  } else {
+    group(0);
+    group(1);
+  }
+  group(2);
 }
 
 }  // namespace neurocloth

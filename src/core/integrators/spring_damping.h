@@ -24,10 +24,13 @@
 // neighbours (ends o < 8 apart), tile by tile (about 64 springs), in two
 // halves: the springs j with j / o even, then odd, none of which waits for
 // another, so each half's impulses are one vector pass and their sums one more.
-// The order is fixed, so every run gives the same bits; the sweep runs on the
-// calling thread.
+// The order is fixed, so every run gives the same bits. From 64 x 64 nodes the
+// sweep goes in three groups: the springs with both ends in the first half of
+// the nodes, those with both in the second half (two threads take these two at
+// once), then the few across the halves; each group in the chunk order.
 #include <string>
 
+#include "core/base/step_threads.h"
 #include "core/network/cloth_network.h"
 
 namespace neurocloth {
@@ -53,8 +56,10 @@ inline bool parse_damping(const std::string& name, DampingMode& out) {
 inline constexpr const char* kDampingNames = "explicit, implicit";
 
 // v <- v with every spring's damping applied over h, directions from
-// `positions` (the step's start). Pinned nodes (free 0) are not moved.
+// `positions` (the step's start). Pinned nodes (free 0) are not moved. On a
+// cloth of kMinThreadedNodes or more, two members of `team` (when given) share
+// the sweep; the result is the same bits without one.
 void damp_springs(const ClothNetwork& net, const ClothState& positions, double h, double* vx,
-                  double* vy, double* vz);
+                  double* vy, double* vz, StepThreads* team = nullptr);
 
 }  // namespace neurocloth

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/step_threads.h"
 #include "core/modules/module_factories.h"
 #include "core/network/cloth_network.h"
 
@@ -249,21 +250,25 @@ class Collider final : public ConstraintModule {
     const double *x = after.x.data(), *y = after.y.data(), *z = after.z.data();
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
     // near the shape, so a collider the cloth is far from costs one pass.
+    // Each node is corrected on its own: the team's parts take node ranges.
     constexpr std::size_t kBlock = 64;
-    for (std::size_t start = 0; start < n; start += kBlock) {
-      const std::size_t end = std::min(n, start + kBlock);
-      int hits = 0;
-      for (std::size_t i = start; i < end; ++i)
-        hits += shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
-      if (hits == 0) continue;
-      for (std::size_t i = start; i < end; ++i) {
-        if (net.masses.free[i] == 0.0 || !shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach))
-          continue;
-        const Vec3 p = after.position(i);
-        const Contact c = shape_.contact(p, before.position(i));
-        if (c.phi < reach) resolve(i, c, p, net.masses.friction[i], span.h, before, after);
+    for_node_parts(span.threads, n, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t start = lo; start < hi; start += kBlock) {
+        const std::size_t end = std::min(hi, start + kBlock);
+        int hits = 0;
+        for (std::size_t i = start; i < end; ++i)
+          hits += shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
+        if (hits == 0) continue;
+        for (std::size_t i = start; i < end; ++i) {
+          if (net.masses.free[i] == 0.0 ||
+              !shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach))
+            continue;
+          const Vec3 p = after.position(i);
+          const Contact c = shape_.contact(p, before.position(i));
+          if (c.phi < reach) resolve(i, c, p, net.masses.friction[i], span.h, before, after);
+        }
       }
-    }
+    });
   }
 
   bool has_adjoint() const override { return true; }

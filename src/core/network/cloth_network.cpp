@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -341,16 +342,39 @@ void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {
   }
 }
 
-double ClothNetwork::max_net_force(const NodeVectors& F) const {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < node_count(); ++i) {
-    if (masses.free[i] == 0.0) continue;
-    const double m = 1.0 / masses.inverse_mass[i];
-    const Vec3 f = F.at(i) + m * gravity;
-    const double n = f.norm();
-    if (!(n <= worst)) worst = n;  // propagates NaN: a NaN force is the worst force
+double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) const {
+  // The largest squared norm, its root taken once: the root is monotone and
+  // correctly rounded, so this is the largest norm, bit for bit. Branch-free,
+  // so the scan vectorises; a NaN anywhere is kept aside, never lost in a max.
+  const double *const fx = F.x.data(), *const fy = F.y.data(), *const fz = F.z.data();
+  const double *const w = masses.inverse_mass.data(), *const free = masses.free.data();
+  const double gx = gravity.x(), gy = gravity.y(), gz = gravity.z();
+  double worst[kMaxStepThreads] = {};
+  bool nan[kMaxStepThreads] = {};
+  const int parts = threads ? threads->size() : 1;
+  for_node_parts(threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+    double m2 = 0.0;
+    bool bad = false;
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double m = 1.0 / w[i];  // pinned: inf, masked below
+      const double x = fx[i] + m * gx, y = fy[i] + m * gy, z = fz[i] + m * gz;
+      const double n2 = free[i] == 0.0 ? 0.0 : x * x + y * y + z * z;
+      bad |= n2 != n2;
+      m2 = n2 > m2 ? n2 : m2;
+    }
+    // The part of the team this range is: ranges start on distinct nodes.
+    int p = 0;
+    while (p + 1 < parts && part_begin(node_count(), p + 1, parts) <= lo)
+      ++p;
+    worst[p] = m2;
+    nan[p] = bad;
+  });
+  double m2 = 0.0;
+  for (int p = 0; p < parts; ++p) {
+    if (nan[p]) return std::numeric_limits<double>::quiet_NaN();
+    m2 = std::max(m2, worst[p]);
   }
-  return worst;
+  return std::sqrt(m2);
 }
 
 Energy ClothNetwork::energy(const ClothState& s) const {

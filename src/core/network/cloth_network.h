@@ -104,8 +104,9 @@ class ClothNetwork {
                       SpringKernel kernel = SpringKernel::automatic) const;
   // a_j = free_j * (F_j / m_j + g): what the velocity neuron integrates.
   void accelerations(const NodeVectors& force, NodeVectors& acc) const;
-  // Largest |F_j + m_j g| over free nodes: the paper's "max sum f_i" (Table 1).
-  double max_net_force(const NodeVectors& force) const;
+  // Largest |F_j + m_j g| over free nodes: the paper's "max sum f_i" (Table 1);
+  // NaN when any is. The parts of `threads` (when given) share the scan.
+  double max_net_force(const NodeVectors& force, StepThreads* threads = nullptr) const;
 
   Energy energy(const ClothState& state) const;
   // The external forces' potential, -sum f_j . p_j over free nodes (J).

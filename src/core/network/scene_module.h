@@ -126,6 +126,9 @@ struct StepStart {
 struct StepSpan {
   double t0;
   double h;
+  // The step's team, or null: a module whose nodes are corrected each on its
+  // own may split its sweep over it (for_node_parts), the same bits as without.
+  StepThreads* threads = nullptr;
 };
 
 class ConstraintModule : public SceneModule {

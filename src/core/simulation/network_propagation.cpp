@@ -59,7 +59,7 @@ class NetworkPropagation final : public Integrator {
     if (!damp) return {1, 0, true};
     // The start positions are still in `in` (in == out or not): the directions
     // the damping acts along are the ones the forces were taken at.
-    damp_springs(net, in, tc, v_out[0], v_out[1], v_out[2]);
+    damp_springs(net, in, tc, v_out[0], v_out[1], v_out[2], inputs.threads);
     for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
       for (int c = 0; c < 3; ++c) {
         const double* p0 = p_in[c];

@@ -115,7 +115,8 @@ bool Simulation::adaptive_frame(double frame_end) {
 bool Simulation::adaptive_trial(StepController& tc, double frame_end) {
   begin_step();
   start_forces();
-  if (ctx_.start_max_force < 0) ctx_.start_max_force = net_.max_net_force(ctx_.start_forces());
+  if (ctx_.start_max_force < 0)
+    ctx_.start_max_force = net_.max_net_force(ctx_.start_forces(), run_.inputs.threads);
   const double tried = tc.trial(std::numeric_limits<double>::infinity());
   const double h = tc.trial(frame_end - run_.time);
   integrate(run_.cloth(), h, run_.back());
@@ -195,7 +196,7 @@ void Simulation::integrate(const ClothState& in, double h, ClothState& out) {
 }
 
 void Simulation::constrain(const StepStart& before, ClothState& after, double h) {
-  const StepSpan span{run_.time, h};
+  const StepSpan span{run_.time, h, run_.inputs.threads};
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     ScopedModuleTimer timer(ctx_.constraint_clocks[k]);
     constraints_[k]->apply(net_, span, before, after, run_.module_states[k].get());
@@ -207,7 +208,7 @@ void Simulation::constrain(const StepStart& before, ClothState& after, double h)
 double Simulation::landing_max_force(const ClothState& landed) {
   net_.net_forces(landed, run_.inputs, ctx_.landing_forces());
   ++run_.counters.force_evaluations;
-  return net_.max_net_force(ctx_.landing_forces());
+  return net_.max_net_force(ctx_.landing_forces(), run_.inputs.threads);
 }
 
 bool Simulation::force_grows(double m) const {
