@@ -8,6 +8,7 @@
 // The workers live as long as the team (no thread per step); they spin for a
 // few microseconds between sweeps, then sleep on a condition variable, so an
 // idle team costs no CPU. One team serves one caller at a time.
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -83,6 +84,24 @@ void for_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn) {
   }
   const int parts = team->size();
   team->run([&](int p) { fn(part_begin(nodes, p, parts), part_begin(nodes, p + 1, parts)); });
+}
+
+// fn(begin, end) -> T on the same parts as for_node_parts, the results folded
+// with combine in part order (so the result depends on the parts, which do
+// not depend on the team, only when combine is not associative).
+template <class T, class Fn, class Combine>
+T reduce_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn, Combine&& combine) {
+  if (team == nullptr || team->size() == 1 || nodes < kMinThreadedNodes)
+    return fn(std::size_t{0}, nodes);
+  const int parts = team->size();
+  std::array<T, kMaxStepThreads> results{};
+  team->run([&](int p) {
+    results[p] = fn(part_begin(nodes, p, parts), part_begin(nodes, p + 1, parts));
+  });
+  T out = results[0];
+  for (int p = 1; p < parts; ++p)
+    out = combine(out, results[p]);
+  return out;
 }
 
 // A team a value can own: a copy gets a team of its own of the same size, so

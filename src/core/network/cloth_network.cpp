@@ -349,31 +349,22 @@ double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) c
   const double *const fx = F.x.data(), *const fy = F.y.data(), *const fz = F.z.data();
   const double *const w = masses.inverse_mass.data(), *const free = masses.free.data();
   const double gx = gravity.x(), gy = gravity.y(), gz = gravity.z();
-  double worst[kMaxStepThreads] = {};
-  bool nan[kMaxStepThreads] = {};
-  const int parts = threads ? threads->size() : 1;
-  for_node_parts(threads, node_count(), [&](std::size_t lo, std::size_t hi) {
-    double m2 = 0.0;
-    bool bad = false;
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double m = 1.0 / w[i];  // pinned: inf, masked below
-      const double x = fx[i] + m * gx, y = fy[i] + m * gy, z = fz[i] + m * gz;
-      const double n2 = free[i] == 0.0 ? 0.0 : x * x + y * y + z * z;
-      bad |= n2 != n2;
-      m2 = n2 > m2 ? n2 : m2;
-    }
-    // The part of the team this range is: ranges start on distinct nodes.
-    int p = 0;
-    while (p + 1 < parts && part_begin(node_count(), p + 1, parts) <= lo)
-      ++p;
-    worst[p] = m2;
-    nan[p] = bad;
-  });
-  double m2 = 0.0;
-  for (int p = 0; p < parts; ++p) {
-    if (nan[p]) return std::numeric_limits<double>::quiet_NaN();
-    m2 = std::max(m2, worst[p]);
-  }
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const double m2 = reduce_node_parts<double>(
+      threads, node_count(),
+      [&](std::size_t lo, std::size_t hi) {
+        double worst = 0.0;
+        bool nan = false;
+        for (std::size_t i = lo; i < hi; ++i) {
+          const double m = 1.0 / w[i];  // pinned: inf, masked below
+          const double x = fx[i] + m * gx, y = fy[i] + m * gy, z = fz[i] + m * gz;
+          const double n2 = free[i] == 0.0 ? 0.0 : x * x + y * y + z * z;
+          nan |= n2 != n2;
+          worst = n2 > worst ? n2 : worst;
+        }
+        return nan ? kNaN : worst;
+      },
+      [&](double a, double b) { return a != a || b != b ? kNaN : std::max(a, b); });
   return std::sqrt(m2);
 }
 

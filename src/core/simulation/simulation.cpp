@@ -45,11 +45,7 @@ RunStatus Simulation::advance(double seconds) {
     if (interrupted_) break;  // within the frame: time is where its last step left it
     if (!done && run_.status == RunStatus::ok) budget_exhausted_ = true;
     if (last && done && run_.status == RunStatus::ok) run_.time = t_end;  // no drift at the end
-    if (interrupt_ && !last && run_.status == RunStatus::ok &&
-        (steps_since_ask_ = 0, interrupt_(*this))) {
-      interrupted_ = true;
-      break;
-    }
+    if (interrupt_ && !last && run_.status == RunStatus::ok && ask_interrupt()) break;
   }
   // Between energy checks, at least never hand out a NaN: a cheap test every call.
   if (run_.status == RunStatus::ok && run_.counters.steps_since_check > 0 && !state().all_finite())
@@ -137,17 +133,19 @@ bool Simulation::adaptive_trial(StepController& tc, double frame_end) {
 bool Simulation::take_from_budget() {
   if (ctx_.budget_left <= 0) return false;
   // A frame at the step's floor can be millions of steps (minutes): the
-  // interrupt is asked within it too, before every kStepsBetweenAsks + 1st.
+  // interrupt is asked within it too, after every kStepsBetweenAsks steps
+  // since it was last asked (before the next one is taken).
   constexpr long kStepsBetweenAsks = 1024;
-  if (interrupt_ && ++steps_since_ask_ > kStepsBetweenAsks) {
-    steps_since_ask_ = 1;
-    if (interrupt_(*this)) {
-      interrupted_ = true;
-      return false;
-    }
-  }
+  if (interrupt_ && steps_since_ask_ >= kStepsBetweenAsks && ask_interrupt()) return false;
+  ++steps_since_ask_;
   --ctx_.budget_left;
   return true;
+}
+
+bool Simulation::ask_interrupt() {
+  steps_since_ask_ = 0;
+  interrupted_ = interrupt_(*this);
+  return interrupted_;
 }
 
 // Applies the ramp's next weights (between two steps); drops what they invalidate.

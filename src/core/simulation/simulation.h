@@ -172,6 +172,8 @@ class Simulation {
   // One trial of Table 1 over at most t_c; true when it was accepted.
   bool adaptive_trial(StepController& tc, double frame_end);
   bool take_from_budget();
+  // Asks the interrupt (set) now: true, and interrupted(), when it says stop.
+  bool ask_interrupt();
   bool advance_ramp();
   void begin_step();
   void start_forces();
@@ -203,7 +205,7 @@ class Simulation {
   // The outcome of the last advance(), and callbacks: no step result depends on them.
   bool budget_exhausted_ = false;
   bool interrupted_ = false;
-  long steps_since_ask_ = 0;  // steps since the interrupt was last asked within a frame
+  long steps_since_ask_ = 0;  // steps taken since the interrupt was last asked
   std::function<void(const StepEvent&)> observer_;
   std::function<bool(const Simulation&)> interrupt_;
 };
