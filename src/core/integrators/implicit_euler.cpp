@@ -51,7 +51,7 @@ class ImplicitEuler final : public Integrator {
   StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors& F, double h, ClothState& out) override {
     StepReport report{0, 0, true};
-    linear_step(net, in, F, h, out, report);
+    linear_step(net, in, F, h, out, report, inputs.threads);
     net.net_forces(out, inputs, force_a_);
     ++report.force_evaluations;
     if (!linearisation_holds(net, in, F, out, force_a_, h))
@@ -71,15 +71,15 @@ class ImplicitEuler final : public Integrator {
   static constexpr std::size_t kMinLaplacianNodes = ImplicitMultigrid::kMinNodes;
 
   void linear_step(const ClothNetwork& net, const ClothState& in, const NodeVectors& F, double h,
-                   ClothState& out, StepReport& report) {
+                   ClothState& out, StepReport& report, StepThreads* team) {
     const std::size_t n = net.node_count();
-    system_.linearise(net, in);
+    system_.linearise(net, in, /*exact_hessian=*/false, team);
     for (std::size_t i = 0; i < n; ++i) {
       v0_[3 * i] = in.vx[i];
       v0_[3 * i + 1] = in.vy[i];
       v0_[3 * i + 2] = in.vz[i];
     }
-    system_.apply(net, 0.0, 0.0, 1.0, v0_, kv_);  // K v0
+    system_.apply(net, 0.0, 0.0, 1.0, v0_, kv_, team);  // K v0
     for (std::size_t i = 0; i < n; ++i) {
       const double m = 1.0 / net.masses.inverse_mass[i];
       const double free = net.masses.free[i];
@@ -101,7 +101,7 @@ class ImplicitEuler final : public Integrator {
     const bool factored = use == ImplicitPreconditioner::laplacian && refresh_laplacian(net, h);
     const CgResult cg =
         system_.solve(net, 1.0, h, h * h, rhs_, dv_, linear_tolerance_, cg_max_iterations(n),
-                      cycled ? &multigrid_ : nullptr, factored ? &laplacian_ : nullptr);
+                      cycled ? &multigrid_ : nullptr, factored ? &laplacian_ : nullptr, team);
     if (cycled) account(fresh, cg.iterations);
     for (std::size_t i = 0; i < n; ++i) {
       out.vx[i] = in.vx[i] + dv_[3 * i];
@@ -150,7 +150,7 @@ class ImplicitEuler final : public Integrator {
     double t = 0;
     while (t < h) {
       const double p = pieces.trial(h - t);
-      linear_step(net, *at, *at_force, p, *trial, report);
+      linear_step(net, *at, *at_force, p, *trial, report, inputs.threads);
       net.net_forces(*trial, inputs, *trial_force);
       ++report.force_evaluations;
       if (!pieces.at_floor() &&

@@ -39,8 +39,9 @@ SparseMatrix assemble(const ClothNetwork& net, const ImplicitSystem& system, dou
       entries.emplace_back(3 * i + c, 3 * i + c, m);
   }
   for (std::size_t s = 0; s < L.size(); ++s) {
-    const double* K = &system.stiffness_blocks()[6 * s];
-    const double* u = &system.directions()[3 * s];
+    const double K[6] = {system.stiffness(s, 0), system.stiffness(s, 1), system.stiffness(s, 2),
+                         system.stiffness(s, 3), system.stiffness(s, 4), system.stiffness(s, 5)};
+    const double u[3] = {system.direction(s, 0), system.direction(s, 1), system.direction(s, 2)};
     const double c = beta * L.damping[s];
     const double k[3][3] = {{K[0], K[1], K[2]}, {K[1], K[3], K[4]}, {K[2], K[4], K[5]}};
     const int a = L.node_a[s], b = L.node_b[s];

@@ -1,122 +1,252 @@
 #include "core/integrators/implicit_system.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "core/network/spring_chunks.h"
+
 namespace neurocloth {
-
-ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
-    : k_(6 * net.spring_count(), 0.0), dir_(3 * net.spring_count(), 0.0) {
-  const std::size_t dofs = 3 * net.node_count();
-  for (auto* v : {&r_, &z_, &p_, &q_, &diag_, &planar_, &t_, &u_})
-    v->assign(dofs, 0.0);
-}
-
-void ImplicitSystem::invert_diagonal_blocks(const ClothNetwork& net, double alpha, double beta,
-                                            double gamma) {
-  const std::size_t n = net.node_count();
-  blocks_.assign(9 * n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double m = alpha / net.masses.inverse_mass[i];
-    for (int c = 0; c < 3; ++c)
-      blocks_[9 * i + 4 * c] = m;
-  }
-  const SpringLayer& L = net.springs;
-  for (std::size_t s = 0; s < L.size(); ++s) {
-    const double* K = &k_[6 * s];
-    const double* d = &dir_[3 * s];
-    const double c = beta * L.damping[s];
-    const double k[9] = {K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5]};
-    for (const std::int32_t node : {L.node_a[s], L.node_b[s]}) {
-      double* B = &blocks_[9 * static_cast<std::size_t>(node)];
-      for (int r = 0; r < 3; ++r)
-        for (int col = 0; col < 3; ++col)
-          B[3 * r + col] += gamma * k[3 * r + col] + c * d[r] * d[col];
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    if (net.masses.free[i] == 0.0)
-      for (int e = 0; e < 9; ++e)
-        blocks_[9 * i + e] = e % 4 == 0 ? 1.0 : 0.0;
-  ImplicitMultigrid::invert_blocks(blocks_);
-}
-
-void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, bool exact_hessian) {
-  const SpringLayer& L = net.springs;
-  for (std::size_t i = 0; i < L.size(); ++i) {
-    const Vec3 d = s.position(L.node_b[i]) - s.position(L.node_a[i]);
-    const double len = d.norm();
-    double* K = &k_[6 * i];
-    double* u = &dir_[3 * i];
-    if (!(len > kMinSpringLength)) {  // no direction: no linearisation either
-      std::fill(K, K + 6, 0.0);
-      std::fill(u, u + 3, 0.0);
-      continue;
-    }
-    const Vec3 n = d / len;
-    const double e = len - L.rest_length[i];
-    const double axial = L.stiffness[i] * L.function.slope(e, L.rest_length[i]);
-    const double tension = L.stiffness[i] * L.function.force(e, L.rest_length[i]) / len;
-    const double transverse = exact_hessian ? tension : std::max(0.0, tension);
-    // K = axial n n^T + transverse (I - n n^T)
-    const double a = axial - transverse;
-    K[0] = a * n.x() * n.x() + transverse;
-    K[1] = a * n.x() * n.y();
-    K[2] = a * n.x() * n.z();
-    K[3] = a * n.y() * n.y() + transverse;
-    K[4] = a * n.y() * n.z();
-    K[5] = a * n.z() * n.z() + transverse;
-    u[0] = n.x();
-    u[1] = n.y();
-    u[2] = n.z();
-  }
-}
-
-void ImplicitSystem::apply(const ClothNetwork& net, double alpha, double beta, double gamma,
-                           const double* u, double* y) const {
-  const std::size_t n = net.node_count();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double m = alpha / net.masses.inverse_mass[i];
-    y[3 * i] = m * u[3 * i];
-    y[3 * i + 1] = m * u[3 * i + 1];
-    y[3 * i + 2] = m * u[3 * i + 2];
-  }
-  const SpringLayer& L = net.springs;
-  for (std::size_t s = 0; s < L.size(); ++s) {
-    const std::size_t a = 3 * static_cast<std::size_t>(L.node_a[s]);
-    const std::size_t b = 3 * static_cast<std::size_t>(L.node_b[s]);
-    const double dx = u[a] - u[b], dy = u[a + 1] - u[b + 1], dz = u[a + 2] - u[b + 2];
-    const double* K = &k_[6 * s];
-    const double* d = &dir_[3 * s];
-    const double proj = beta * L.damping[s] * (d[0] * dx + d[1] * dy + d[2] * dz);
-    const double fx = gamma * (K[0] * dx + K[1] * dy + K[2] * dz) + proj * d[0];
-    const double fy = gamma * (K[1] * dx + K[3] * dy + K[4] * dz) + proj * d[1];
-    const double fz = gamma * (K[2] * dx + K[4] * dy + K[5] * dz) + proj * d[2];
-    y[a] += fx;
-    y[a + 1] += fy;
-    y[a + 2] += fz;
-    y[b] -= fx;
-    y[b + 1] -= fy;
-    y[b + 2] -= fz;
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    if (net.masses.free[i] == 0.0) y[3 * i] = y[3 * i + 1] = y[3 * i + 2] = 0.0;
-}
-
 namespace {
+
+// Interleaved (x0 y0 z0 x1 ...) to planar (x0 x1 ... y0 ... z0 ...) and back.
+void to_planar(const double* in, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      out[c * n + i] = in[3 * i + c];
+}
+void to_interleaved(const double* in, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      out[3 * i + c] = in[c * n + i];
+}
+
+// Serial, in one order, so that the sums do not depend on a team.
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0;
   for (std::size_t i = 0; i < a.size(); ++i)
     s += a[i] * b[i];
   return s;
 }
+
+// fn(k) for every planar entry k of nodes [begin, end): the three components.
+template <class Fn>
+void for_entries(std::size_t n, std::size_t begin, std::size_t end, Fn&& fn) {
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t k = c * n + begin, stop = c * n + end; k < stop; ++k)
+      fn(k);
+}
+
+// fn(begin, end) on parts of the springs [0, springs): split as for_node_parts
+// splits the nodes, when it would split them. Each spring's work is its own,
+// so any split gives the same bits.
+template <class Fn>
+void for_spring_parts(StepThreads* team, std::size_t nodes, std::size_t springs, Fn&& fn) {
+  if (team == nullptr || team->size() == 1 || nodes < kMinThreadedNodes) {
+    fn(std::size_t{0}, springs);
+    return;
+  }
+  const int parts = team->size();
+  team->run([&](int p) { fn(part_begin(springs, p, parts), part_begin(springs, p + 1, parts)); });
+}
+
 }  // namespace
+
+ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
+    : k_(6 * net.spring_count(), 0.0),
+      dir_(3 * net.spring_count(), 0.0),
+      springs_(net.spring_count()),
+      nodes_(net.node_count()) {
+  const std::size_t dofs = 3 * net.node_count();
+  for (auto* v : {&r_, &z_, &p_, &q_, &x_, &b_, &diag_, &t_, &u_})
+    v->assign(dofs, 0.0);
+}
+
+void ImplicitSystem::invert_diagonal_blocks(const ClothNetwork& net, double alpha, double beta,
+                                            double gamma, StepThreads* team) {
+  const std::size_t n = net.node_count();
+  blocks_.resize(9 * n);
+  const SpringLayer& L = net.springs;
+  for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double m = alpha / net.masses.inverse_mass[i];
+      for (int e = 0; e < 9; ++e)
+        blocks_[9 * i + e] = e % 4 == 0 ? m : 0.0;
+    }
+    const auto lo = static_cast<std::int32_t>(begin), hi = static_cast<std::int32_t>(end);
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          if (!((a < hi && a + count > lo) || (b < hi && b + count > lo))) return;
+          for (std::int32_t j = 0; j < count; ++j) {
+            const auto s = static_cast<std::size_t>(first + j);
+            const double c = beta * L.damping[s];
+            const double d[3] = {direction(s, 0), direction(s, 1), direction(s, 2)};
+            const double K[6] = {stiffness(s, 0), stiffness(s, 1), stiffness(s, 2),
+                                 stiffness(s, 3), stiffness(s, 4), stiffness(s, 5)};
+            const double k[9] = {K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5]};
+            for (const std::int32_t node : {a + j, b + j}) {
+              if (node < lo || node >= hi) continue;
+              double* B = &blocks_[9 * static_cast<std::size_t>(node)];
+              for (int r = 0; r < 3; ++r)
+                for (int col = 0; col < 3; ++col)
+                  B[3 * r + col] += gamma * k[3 * r + col] + c * d[r] * d[col];
+            }
+          }
+        });
+    for (std::size_t i = begin; i < end; ++i)
+      if (net.masses.free[i] == 0.0)
+        for (int e = 0; e < 9; ++e)
+          blocks_[9 * i + e] = e % 4 == 0 ? 1.0 : 0.0;
+  });
+  ImplicitMultigrid::invert_blocks(blocks_);
+}
+
+void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, bool exact_hessian,
+                               StepThreads* team) {
+  const SpringLayer& L = net.springs;
+  for (ProductOperands& o : operands_)
+    o.stale = true;
+  for_spring_parts(team, net.node_count(), L.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3 d = s.position(L.node_b[i]) - s.position(L.node_a[i]);
+      const double len = d.norm();
+      const std::size_t S = springs_;
+      if (!(len > kMinSpringLength)) {  // no direction: no linearisation either
+        for (std::size_t e = 0; e < 6; ++e)
+          k_[e * S + i] = 0.0;
+        for (std::size_t c = 0; c < 3; ++c)
+          dir_[c * S + i] = 0.0;
+        continue;
+      }
+      const Vec3 n = d / len;
+      const double e = len - L.rest_length[i];
+      const double axial = L.stiffness[i] * L.function.slope(e, L.rest_length[i]);
+      const double tension = L.stiffness[i] * L.function.force(e, L.rest_length[i]) / len;
+      const double transverse = exact_hessian ? tension : std::max(0.0, tension);
+      // K = axial n n^T + transverse (I - n n^T)
+      const double a = axial - transverse;
+      k_[i] = a * n.x() * n.x() + transverse;
+      k_[S + i] = a * n.x() * n.y();
+      k_[2 * S + i] = a * n.x() * n.z();
+      k_[3 * S + i] = a * n.y() * n.y() + transverse;
+      k_[4 * S + i] = a * n.y() * n.z();
+      k_[5 * S + i] = a * n.z() * n.z() + transverse;
+      dir_[i] = n.x();
+      dir_[S + i] = n.y();
+      dir_[2 * S + i] = n.z();
+    }
+  });
+}
+
+const ImplicitSystem::ProductOperands& ImplicitSystem::prepare_product(const ClothNetwork& net,
+                                                                       double alpha, double beta,
+                                                                       double gamma,
+                                                                       StepThreads* team) {
+  ++product_calls_;
+  for (ProductOperands& o : operands_)
+    if (!o.stale && o.alpha == alpha && o.beta == beta && o.gamma == gamma) {
+      o.used = product_calls_;
+      return o;
+    }
+  ProductOperands& o = operands_[0].used <= operands_[1].used ? operands_[0] : operands_[1];
+  const std::size_t n = net.node_count();
+  o.mass.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    o.mass[i] = alpha / net.masses.inverse_mass[i];
+  const SpringLayer& L = net.springs;
+  const std::size_t S = springs_;
+  o.stiffness_only = beta == 0.0 && gamma == 1.0;
+  if (!o.stiffness_only) {
+    o.own_blocks.resize(6 * S);
+    double* B = o.own_blocks.data();
+    const double* K = k_.data();
+    const double *dx = dir_.data(), *dy = dx + S, *dz = dy + S;
+    for_spring_parts(team, n, S, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s) {
+        const double c = beta * L.damping[s];
+        B[s] = gamma * K[s] + c * dx[s] * dx[s];
+        B[S + s] = gamma * K[S + s] + c * dx[s] * dy[s];
+        B[2 * S + s] = gamma * K[2 * S + s] + c * dx[s] * dz[s];
+        B[3 * S + s] = gamma * K[3 * S + s] + c * dy[s] * dy[s];
+        B[4 * S + s] = gamma * K[4 * S + s] + c * dy[s] * dz[s];
+        B[5 * S + s] = gamma * K[5 * S + s] + c * dz[s] * dz[s];
+      }
+    });
+  }
+  o.alpha = alpha;
+  o.beta = beta;
+  o.gamma = gamma;
+  o.stale = false;
+  o.used = product_calls_;
+  return o;
+}
+
+// Walked as the force is (spring_chunks.h): a chunk of springs whose ends are
+// runs of consecutive nodes is one pass of vector lanes over u, and its
+// outputs reach the nodes through accumulate_chunk, clipped to the part's
+// nodes, so every node sums the same terms in the same order whatever the
+// parts. A chunk reads u at nodes of other parts: u must be whole before.
+template <class Tail>
+void ImplicitSystem::product(const ClothNetwork& net, const ProductOperands& A, const double* u,
+                             double* y, StepThreads* team, Tail&& tail) {
+  const std::size_t n = net.node_count();
+  const SpringLayer& L = net.springs;
+  const std::size_t springs = L.size();
+  const double* const ux = u;
+  const double* const uy = u + n;
+  const double* const uz = u + 2 * n;
+  double* const yx = y;
+  double* const yy = y + n;
+  double* const yz = y + 2 * n;
+  for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double m = A.mass[i];
+      yx[i] = m * ux[i];
+      yy[i] = m * uy[i];
+      yz[i] = m * uz[i];
+    }
+    const auto lo = static_cast<std::int32_t>(begin), hi = static_cast<std::int32_t>(end);
+    spring_chunks::Chunk chunk;
+    spring_chunks::for_each_chunk(
+        L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
+          if (!((a < hi && a + count > lo) || (b < hi && b + count > lo))) return;
+          const double* bxx = operand_blocks(A) + first;
+          const double* bxy = bxx + springs;
+          const double* bxz = bxy + springs;
+          const double* byy = bxz + springs;
+          const double* byz = byy + springs;
+          const double* bzz = byz + springs;
+          for (std::int32_t j = 0; j < count; ++j) {
+            const double dx = ux[a + j] - ux[b + j];
+            const double dy = uy[a + j] - uy[b + j];
+            const double dz = uz[a + j] - uz[b + j];
+            chunk.fx[j] = bxx[j] * dx + bxy[j] * dy + bxz[j] * dz;
+            chunk.fy[j] = bxy[j] * dx + byy[j] * dy + byz[j] * dz;
+            chunk.fz[j] = bxz[j] * dx + byz[j] * dy + bzz[j] * dz;
+          }
+          spring_chunks::accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, {yx, yy, yz},
+                                          lo, hi);
+        });
+    for (std::size_t i = begin; i < end; ++i)
+      if (net.masses.free[i] == 0.0) yx[i] = yy[i] = yz[i] = 0.0;
+    tail(begin, end);
+  });
+}
+
+void ImplicitSystem::apply(const ClothNetwork& net, double alpha, double beta, double gamma,
+                           const double* u, double* y, StepThreads* team) {
+  const ProductOperands& A = prepare_product(net, alpha, beta, gamma, team);
+  const std::size_t n = net.node_count();
+  to_planar(u, t_.data(), n);
+  product(net, A, t_.data(), u_.data(), team, [](std::size_t, std::size_t) {});
+  to_interleaved(u_.data(), y, n);
+}
 
 CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double beta, double gamma,
                                const std::vector<double>& b, std::vector<double>& x,
                                double tolerance, int max_iterations,
-                               const ImplicitMultigrid* multigrid,
-                               const SpringLaplacian* laplacian) {
+                               const ImplicitMultigrid* multigrid, const SpringLaplacian* laplacian,
+                               StepThreads* team) {
   const std::size_t n = net.node_count();
   const SpringLayer& L = net.springs;
   if (laplacian != nullptr && (!laplacian->factored() || laplacian->nodes() != n))
@@ -124,51 +254,53 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
   const bool cycled = laplacian == nullptr && multigrid != nullptr && multigrid->built();
   ImplicitMultigrid::FineLevel fine;
   if (cycled || laplacian != nullptr) {
-    invert_diagonal_blocks(net, alpha, beta, gamma);
+    invert_diagonal_blocks(net, alpha, beta, gamma, team);
     fine.block_inverse = &blocks_;
     fine.apply = [&](const double* u, double* y) { apply(net, alpha, beta, gamma, u, y); };
   }
-  // Jacobi preconditioner: the diagonal of A.
-  for (std::size_t i = 0; i < n; ++i) {
-    const double m = alpha / net.masses.inverse_mass[i];
-    diag_[3 * i] = diag_[3 * i + 1] = diag_[3 * i + 2] = m;
-  }
-  for (std::size_t s = 0; s < L.size(); ++s) {
-    const double* K = &k_[6 * s];
-    const double* d = &dir_[3 * s];
-    const double c = beta * L.damping[s];
-    const double dd[3] = {gamma * K[0] + c * d[0] * d[0], gamma * K[3] + c * d[1] * d[1],
-                          gamma * K[5] + c * d[2] * d[2]};
-    for (int k = 0; k < 3; ++k) {
-      diag_[3 * L.node_a[s] + k] += dd[k];
-      diag_[3 * L.node_b[s] + k] += dd[k];
+  if (laplacian == nullptr && !cycled) {  // Jacobi: the diagonal of A
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = alpha / net.masses.inverse_mass[i];
+      diag_[i] = diag_[n + i] = diag_[2 * n + i] = m;
     }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool pinned = net.masses.free[i] == 0.0;
-    for (int k = 0; k < 3; ++k) {
-      double& dk = diag_[3 * i + k];
-      dk = (pinned || !(dk > 0.0)) ? 1.0 : dk;
-      if (pinned) x[3 * i + k] = 0.0;
+    for (std::size_t s = 0; s < L.size(); ++s) {
+      const double c = beta * L.damping[s];
+      const double dd[3] = {gamma * stiffness(s, 0) + c * direction(s, 0) * direction(s, 0),
+                            gamma * stiffness(s, 3) + c * direction(s, 1) * direction(s, 1),
+                            gamma * stiffness(s, 5) + c * direction(s, 2) * direction(s, 2)};
+      for (std::size_t k = 0; k < 3; ++k) {
+        diag_[k * n + static_cast<std::size_t>(L.node_a[s])] += dd[k];
+        diag_[k * n + static_cast<std::size_t>(L.node_b[s])] += dd[k];
+      }
     }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < 3; ++k) {
+        double& dk = diag_[k * n + i];
+        dk = (net.masses.free[i] == 0.0 || !(dk > 0.0)) ? 1.0 : dk;
+      }
   }
+  to_planar(b.data(), b_.data(), n);
+  to_planar(x.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (net.masses.free[i] == 0.0) x_[i] = x_[n + i] = x_[2 * n + i] = 0.0;
 
   CgResult result;
-  const double b_norm = std::sqrt(dot(b, b));
+  const double b_norm = std::sqrt(dot(b_, b_));
   if (b_norm == 0.0) {
     std::fill(x.begin(), x.end(), 0.0);
     return result;
   }
-  apply(net, alpha, beta, gamma, x, q_);
-  for (std::size_t i = 0; i < r_.size(); ++i)
-    r_[i] = b[i] - q_[i];
-  for (std::size_t i = 0; i < n; ++i)
-    if (net.masses.free[i] == 0.0) r_[3 * i] = r_[3 * i + 1] = r_[3 * i + 2] = 0.0;
+  const ProductOperands& A = prepare_product(net, alpha, beta, gamma, team);
+  product(net, A, x_.data(), q_.data(), team, [&](std::size_t begin, std::size_t end) {
+    for_entries(n, begin, end, [&](std::size_t k) { r_[k] = b_[k] - q_[k]; });
+    for (std::size_t i = begin; i < end; ++i)
+      if (net.masses.free[i] == 0.0) r_[i] = r_[n + i] = r_[2 * n + i] = 0.0;
+  });
   auto precondition_any = [&] {
     if (laplacian != nullptr)
-      precondition_laplacian(net, alpha, beta, gamma, *laplacian);
+      precondition_laplacian(net, A, *laplacian, team);
     else
-      precondition(cycled ? multigrid : nullptr, fine);
+      precondition(net, cycled ? multigrid : nullptr, fine, team);
   };
   precondition_any();
   p_ = z_;
@@ -176,51 +308,44 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
   double r_norm = std::sqrt(dot(r_, r_));
   int it = 0;
   while (r_norm > tolerance * b_norm && it < max_iterations) {
-    apply(net, alpha, beta, gamma, p_, q_);
+    product(net, A, p_.data(), q_.data(), team, [](std::size_t, std::size_t) {});
     const double pq = dot(p_, q_);
     // Negative curvature (an indefinite system, or NaN): stop with the iterate
     // so far, which is still a descent direction for a relaxation (Steihaug).
     if (!(pq > 0.0)) break;
     const double step = rz / pq;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      x[i] += step * p_[i];
-      r_[i] -= step * q_[i];
-    }
+    for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+      for_entries(n, begin, end, [&](std::size_t k) {
+        x_[k] += step * p_[k];
+        r_[k] -= step * q_[k];
+      });
+    });
     precondition_any();
     const double rz_new = dot(r_, z_);
     const double beta_cg = rz_new / rz;
     rz = rz_new;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      p_[i] = z_[i] + beta_cg * p_[i];
+    for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+      for_entries(n, begin, end, [&](std::size_t k) { p_[k] = z_[k] + beta_cg * p_[k]; });
+    });
     r_norm = std::sqrt(dot(r_, r_));
     ++it;
   }
+  to_interleaved(x_.data(), x.data(), n);
   result.iterations = it;
   result.relative_residual = r_norm / b_norm;
   result.converged = r_norm <= tolerance * b_norm;
   return result;
 }
 
-void ImplicitSystem::laplacian_solve(const SpringLaplacian& laplacian, const double* x, double* y) {
-  const std::size_t n = laplacian.nodes();
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t c = 0; c < 3; ++c)
-      planar_[c * n + i] = x[3 * i + c];
-  laplacian.solve3(planar_.data());
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t c = 0; c < 3; ++c)
-      y[3 * i + c] = planar_[c * n + i];
-}
-
-void ImplicitSystem::block_jacobi(const double* x, double* y) const {
-  const std::size_t n = blocks_.size() / 9;
-  for (std::size_t i = 0; i < n; ++i) {
+void ImplicitSystem::block_jacobi(const double* x, double* y, std::size_t begin,
+                                  std::size_t end) const {
+  const std::size_t n = nodes_;
+  for (std::size_t i = begin; i < end; ++i) {
     const double* B = &blocks_[9 * i];
-    const double* u = x + 3 * i;
-    double* v = y + 3 * i;
-    v[0] = B[0] * u[0] + B[1] * u[1] + B[2] * u[2];
-    v[1] = B[3] * u[0] + B[4] * u[1] + B[5] * u[2];
-    v[2] = B[6] * u[0] + B[7] * u[1] + B[8] * u[2];
+    const double u0 = x[i], u1 = x[n + i], u2 = x[2 * n + i];
+    y[i] = B[0] * u0 + B[1] * u1 + B[2] * u2;
+    y[n + i] = B[3] * u0 + B[4] * u1 + B[5] * u2;
+    y[2 * n + i] = B[6] * u0 + B[7] * u1 + B[8] * u2;
   }
 }
 
@@ -233,32 +358,43 @@ void ImplicitSystem::block_jacobi(const double* x, double* y) const {
 // 1e-10), which A sees as little more than its mass, and which S, each node's
 // own 3x3 block, solves nearly exactly. The stiff smooth motion along the
 // springs is P's, as a coarse level's in a multigrid (docs/network.md).
-void ImplicitSystem::precondition_laplacian(const ClothNetwork& net, double alpha, double beta,
-                                            double gamma, const SpringLaplacian& laplacian) {
-  const std::size_t m = r_.size();
-  block_jacobi(r_.data(), z_.data());
-  apply(net, alpha, beta, gamma, z_.data(), t_.data());
-  for (std::size_t i = 0; i < m; ++i)
-    t_[i] = r_[i] - t_[i];
-  laplacian_solve(laplacian, t_.data(), u_.data());
-  for (std::size_t i = 0; i < m; ++i)
-    z_[i] += u_[i];
-  apply(net, alpha, beta, gamma, z_.data(), t_.data());
-  for (std::size_t i = 0; i < m; ++i)
-    t_[i] = r_[i] - t_[i];
-  block_jacobi(t_.data(), u_.data());
-  for (std::size_t i = 0; i < m; ++i)
-    z_[i] += u_[i];
+void ImplicitSystem::precondition_laplacian(const ClothNetwork& net, const ProductOperands& A,
+                                            const SpringLaplacian& laplacian, StepThreads* team) {
+  const std::size_t n = nodes_;
+  for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+    block_jacobi(r_.data(), z_.data(), begin, end);
+  });
+  product(net, A, z_.data(), t_.data(), team, [&](std::size_t begin, std::size_t end) {
+    for_entries(n, begin, end, [&](std::size_t k) { t_[k] = r_[k] - t_[k]; });
+  });
+  laplacian.solve3(t_.data(), team);  // in place: t <- P^-1 t
+  for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+    for_entries(n, begin, end, [&](std::size_t k) { z_[k] += t_[k]; });
+  });
+  // The product reads z at every part's nodes until all parts are done, so
+  // the new z goes to u, which then trades places with z.
+  product(net, A, z_.data(), t_.data(), team, [&](std::size_t begin, std::size_t end) {
+    for_entries(n, begin, end, [&](std::size_t k) { t_[k] = r_[k] - t_[k]; });
+    block_jacobi(t_.data(), u_.data(), begin, end);
+    for_entries(n, begin, end, [&](std::size_t k) { u_[k] += z_[k]; });
+  });
+  z_.swap(u_);
 }
 
-void ImplicitSystem::precondition(const ImplicitMultigrid* multigrid,
-                                  const ImplicitMultigrid::FineLevel& fine) {
+void ImplicitSystem::precondition(const ClothNetwork& net, const ImplicitMultigrid* multigrid,
+                                  const ImplicitMultigrid::FineLevel& fine, StepThreads* team) {
+  const std::size_t n = net.node_count();
   if (multigrid != nullptr) {
-    multigrid->solve(fine, r_, z_);
+    interleaved_r_.resize(3 * n);
+    interleaved_z_.resize(3 * n);
+    to_interleaved(r_.data(), interleaved_r_.data(), n);
+    multigrid->solve(fine, interleaved_r_, interleaved_z_);
+    to_planar(interleaved_z_.data(), z_.data(), n);
     return;
   }
-  for (std::size_t i = 0; i < r_.size(); ++i)
-    z_[i] = r_[i] / diag_[i];
+  for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
+    for_entries(n, begin, end, [&](std::size_t k) { z_[k] = r_[k] / diag_[k]; });
+  });
 }
 
 }  // namespace neurocloth

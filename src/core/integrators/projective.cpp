@@ -70,7 +70,7 @@ class Projective final : public Integrator {
     const bool measure = rho_ == 0 && iterations > 0;
     double omega = 1, last_update = 0, first_half = 0;
     for (int it = 0; it < iterations; ++it) {
-      local_global(net, in, h);  // rhs_ now holds the global step's answer
+      local_global(net, in, h, inputs.threads);  // rhs_ now holds the global step's answer
       double update = 0;
       for (std::size_t i = 0; i < rhs_.size(); ++i)
         update += (rhs_[i] - x_[i]) * (rhs_[i] - x_[i]);
@@ -171,7 +171,7 @@ class Projective final : public Integrator {
   // all in displacements. The springs are visited chunk by chunk as the
   // network's force sweep visits them (spring_chunks.h), so each chunk's
   // targets are computed in one vectorisable loop and added in another.
-  void local_global(const ClothNetwork& net, const ClothState& in, double h) {
+  void local_global(const ClothNetwork& net, const ClothState& in, double h, StepThreads* team) {
     const SpringLayer& L = net.springs;
     rhs_ = base_;
     double* const dst = rhs_.data();
@@ -193,10 +193,10 @@ class Projective final : public Integrator {
     if (!factored_) return;
     if (near_)
       near_converged_ = laplacian_.solve3_near(L, spring_weight_, rhs_.data(), kNearTolerance,
-                                               kNearIterations) >= 0 &&
+                                               kNearIterations, team) >= 0 &&
                         near_converged_;
     else
-      laplacian_.solve3(rhs_.data());
+      laplacian_.solve3(rhs_.data(), team);
   }
 
   // The springs' terms of a chunk at x_: -c_s, the target every term of spring

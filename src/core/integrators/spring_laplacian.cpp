@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/integrators/spring_laplacian_order.h"
+
 namespace neurocloth {
 
 bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>& node_weight,
@@ -13,6 +15,7 @@ bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>
   if (free.size() != n || spring_weight.size() != layer.size())
     throw std::invalid_argument("SpringLaplacian::factor: one weight per node and per spring");
   n_ = 0;
+  half_ = separator_ = 0;
   node_weight_.clear();
   using Triplet = Eigen::Triplet<double, std::int32_t>;
   std::vector<Triplet> entries;
@@ -27,21 +30,66 @@ bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>
     if (fb) entries.emplace_back(b, b, w);
     if (fa && fb) entries.emplace_back(std::max(a, b), std::min(a, b), -w);  // lower triangle
   }
-  Eigen::SparseMatrix<double, Eigen::ColMajor, std::int32_t> P(n, n);
+  LaplacianPattern P(n, n);
   P.setFromTriplets(entries.begin(), entries.end());  // sums duplicates
-  Eigen::SimplicialLLT<decltype(P), Eigen::Lower, Eigen::AMDOrdering<std::int32_t>> llt(P);
-  if (llt.info() != Eigen::Success) return false;
-
-  const auto& L = llt.matrixL().nestedExpression();
-  col_start_.assign(L.outerIndexPtr(), L.outerIndexPtr() + n + 1);
-  row_.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
-  value_.assign(L.valuePtr(), L.valuePtr() + L.nonZeros());
+  // From kMinThreadedNodes nodes the order is a dissection (laplacian_order)
+  // and the factor is of the reordered matrix in its natural order; below, or
+  // when the graph does not split, Eigen's minimum-degree order as it always
+  // was (the shipped scenes keep their bits).
+  std::int32_t half = 0, separator = 0;
+  std::vector<std::int32_t> place;
+  if (n >= kMinThreadedNodes) laplacian_order(P, place, half, separator);
+  auto take = [&](const auto& llt) {
+    if (llt.info() != Eigen::Success) return false;
+    const auto& L = llt.matrixL().nestedExpression();
+    col_start_.assign(L.outerIndexPtr(), L.outerIndexPtr() + n + 1);
+    row_.assign(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros());
+    value_.assign(L.valuePtr(), L.valuePtr() + L.nonZeros());
+    return true;
+  };
+  if (half > 0) {
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, std::int32_t> to_place(
+        static_cast<std::int32_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      to_place.indices()[static_cast<std::int32_t>(i)] = place[i];
+    LaplacianPattern ordered(n, n);
+    ordered.selfadjointView<Eigen::Lower>() = P.selfadjointView<Eigen::Lower>().twistedBy(to_place);
+    if (!take(Eigen::SimplicialLLT<LaplacianPattern, Eigen::Lower,
+                                   Eigen::NaturalOrdering<std::int32_t>>(ordered)))
+      return false;
+  } else {
+    const Eigen::SimplicialLLT<LaplacianPattern, Eigen::Lower, Eigen::AMDOrdering<std::int32_t>>
+        llt(P);
+    if (!take(llt)) return false;
+    const auto& p = llt.permutationP().indices();
+    place.assign(p.data(), p.data() + n);
+    separator = 0;
+  }
   for (std::size_t j = 0; j < n; ++j)  // the solve divides by the first entry of each column
     if (col_start_[j] >= col_start_[j + 1] || row_[col_start_[j]] != static_cast<std::int32_t>(j) ||
         !(value_[col_start_[j]] > 0.0))
       return false;
-  const auto& p = llt.permutationP().indices();
-  perm_.assign(p.data(), p.data() + n);
+  perm_ = place;
+  // Where each half's column passes into the separator's rows; a column of
+  // one half with a row in the other would break the dissection (it cannot:
+  // no edge crosses the separator, and elimination only joins nodes through
+  // eliminated ones), so it is checked, and the factor kept whole if it does.
+  half_ = half;
+  separator_ = separator;
+  separator_rows_.assign(static_cast<std::size_t>(separator), 0);
+  for (std::int32_t j = 0; j < separator && half_ > 0; ++j) {
+    const std::int32_t own_end = j < half ? half : separator;
+    std::int32_t k = col_start_[j] + 1;
+    while (k < col_start_[j + 1] && row_[k] < own_end)
+      ++k;
+    separator_rows_[static_cast<std::size_t>(j)] = k;
+    for (std::int32_t e = k; e < col_start_[j + 1]; ++e)
+      if (row_[e] < separator) half_ = 0;
+  }
+  if (half_ == 0) separator_ = 0;
+  for (auto& sums : separator_sums_)
+    sums.assign(static_cast<std::size_t>(n) - static_cast<std::size_t>(separator_),
+                Node4{0.0, 0.0, 0.0, 0.0});
   inv_pivot_.resize(n);
   for (std::size_t j = 0; j < n; ++j)
     inv_pivot_[j] = 1.0 / value_[col_start_[j]];
@@ -55,7 +103,50 @@ bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>
   return true;
 }
 
-void SpringLaplacian::solve3(double* xyz) const {
+void SpringLaplacian::forward_half(std::int32_t begin, std::int32_t end,
+                                   std::vector<Node4>& sums) const {
+  Node4* y = work4_.data();
+  for (Node4& v : sums)
+    v = Node4{0.0, 0.0, 0.0, 0.0};
+  for (std::int32_t j = begin; j < end; ++j) {
+    const std::int32_t own_end = separator_rows_[static_cast<std::size_t>(j)];
+    const Node4 yj = y[j] * inv_pivot_[j];
+    y[j] = yj;
+    for (std::int32_t k = col_start_[j] + 1; k < own_end; ++k)
+      y[row_[k]] -= value_[k] * yj;
+    for (std::int32_t k = own_end; k < col_start_[j + 1]; ++k)
+      sums[static_cast<std::size_t>(row_[k] - separator_)] += value_[k] * yj;
+  }
+}
+
+// L^T z = y' over columns [begin, end), last to first: each column's entries
+// below are the row of L^T right of the pivot; two partial sums halve the
+// chain of dependent subtractions. The columns are read last to first, a
+// pattern the hardware prefetcher follows badly: the column two ahead is
+// asked for by hand.
+void SpringLaplacian::backward(std::int32_t begin, std::int32_t end) const {
+  Node4* y = work4_.data();
+  constexpr std::int32_t kAhead = 2;
+  for (std::int32_t j = end - 1; j >= begin; --j) {
+    const std::int32_t first = col_start_[j] + 1, last = col_start_[j + 1];
+    if (j >= kAhead) {
+      for (std::int32_t k = col_start_[j - kAhead], e = col_start_[j - kAhead + 1]; k < e; k += 8)
+        __builtin_prefetch(&value_[k]);
+      for (std::int32_t k = col_start_[j - kAhead], e = col_start_[j - kAhead + 1]; k < e; k += 16)
+        __builtin_prefetch(&row_[k]);
+    }
+    Node4 even = y[j], odd = Node4{0.0, 0.0, 0.0, 0.0};
+    std::int32_t k = first;
+    for (; k + 1 < last; k += 2) {
+      even -= value_[k] * y[row_[k]];
+      odd -= value_[k + 1] * y[row_[k + 1]];
+    }
+    if (k < last) even -= value_[k] * y[row_[k]];
+    y[j] = (even + odd) * inv_pivot_[j];
+  }
+}
+
+void SpringLaplacian::solve3(double* xyz, StepThreads* team) const {
   // x, y, z and a pad per node: one 4-wide multiply and subtract per factor
   // entry instead of three scalar ones.
   Node4* y = work4_.data();
@@ -64,35 +155,39 @@ void SpringLaplacian::solve3(double* xyz) const {
   const double* const z0 = xyz + 2 * n_;
   for (std::int32_t i = 0; i < n_; ++i)
     y[perm_[i]] = Node4{x0[i], y0[i], z0[i], 0.0};
-  // L y' = y: each column's pivot, then its entries below.
-  for (std::int32_t j = 0; j < n_; ++j) {
-    const std::int32_t begin = col_start_[j], end = col_start_[j + 1];
-    const Node4 yj = y[j] * inv_pivot_[j];
-    y[j] = yj;
-    for (std::int32_t k = begin + 1; k < end; ++k)
-      y[row_[k]] -= value_[k] * yj;
-  }
-  // L^T z = y': each column's entries below are the row of L^T right of the
-  // pivot; two partial sums halve the chain of dependent subtractions.
-  // The columns are read last to first, a pattern the hardware prefetcher
-  // follows badly: the column two ahead is asked for by hand.
-  constexpr std::int32_t kAhead = 2;
-  for (std::int32_t j = n_ - 1; j >= 0; --j) {
-    const std::int32_t begin = col_start_[j] + 1, end = col_start_[j + 1];
-    if (j >= kAhead) {
-      for (std::int32_t k = col_start_[j - kAhead], e = col_start_[j - kAhead + 1]; k < e; k += 8)
-        __builtin_prefetch(&value_[k]);
-      for (std::int32_t k = col_start_[j - kAhead], e = col_start_[j - kAhead + 1]; k < e; k += 16)
-        __builtin_prefetch(&row_[k]);
+  // L y' = y: each column's pivot, then its entries below. The halves first
+  // (at once on a team), their sums into the separator's rows added after, in
+  // one order whatever the team.
+  auto forward = [&](std::int32_t begin, std::int32_t end) {
+    for (std::int32_t j = begin; j < end; ++j) {
+      const Node4 yj = y[j] * inv_pivot_[j];
+      y[j] = yj;
+      for (std::int32_t k = col_start_[j] + 1; k < col_start_[j + 1]; ++k)
+        y[row_[k]] -= value_[k] * yj;
     }
-    Node4 even = y[j], odd = Node4{0.0, 0.0, 0.0, 0.0};
-    std::int32_t k = begin;
-    for (; k + 1 < end; k += 2) {
-      even -= value_[k] * y[row_[k]];
-      odd -= value_[k + 1] * y[row_[k + 1]];
+  };
+  if (half_ > 0) {
+    const std::int32_t begin[2] = {0, half_}, end[2] = {half_, separator_};
+    auto halves = [&](auto&& fn) {
+      if (team != nullptr && team->size() >= 2)
+        team->run([&](int p) {
+          if (p < 2) fn(p);
+        });
+      else
+        for (int p = 0; p < 2; ++p)
+          fn(p);
+    };
+    halves([&](int p) { forward_half(begin[p], end[p], separator_sums_[p]); });
+    for (std::int32_t r = separator_; r < n_; ++r) {
+      const auto s = static_cast<std::size_t>(r - separator_);
+      y[r] = (y[r] - separator_sums_[0][s]) - separator_sums_[1][s];
     }
-    if (k < end) even -= value_[k] * y[row_[k]];
-    y[j] = (even + odd) * inv_pivot_[j];
+    forward(separator_, n_);
+    backward(separator_, n_);
+    halves([&](int p) { backward(begin[p], end[p]); });
+  } else {
+    forward(0, n_);
+    backward(0, n_);
   }
   for (std::int32_t i = 0; i < n_; ++i) {
     const Node4& t = y[perm_[i]];
@@ -122,7 +217,8 @@ void SpringLaplacian::multiply3(const SpringLayer& layer, const std::vector<doub
 }
 
 int SpringLaplacian::solve3_near(const SpringLayer& layer, const std::vector<double>& spring_weight,
-                                 double* xyz, double tolerance, int max_iterations) const {
+                                 double* xyz, double tolerance, int max_iterations,
+                                 StepThreads* team) const {
   const std::size_t m = 3 * static_cast<std::size_t>(n_);
   auto dot = [m](const std::vector<double>& u, const std::vector<double>& v) {
     double sum = 0;
@@ -133,14 +229,14 @@ int SpringLaplacian::solve3_near(const SpringLayer& layer, const std::vector<dou
   r_.assign(xyz, xyz + m);  // b
   const double b_norm = std::sqrt(dot(r_, r_));
   z_ = r_;
-  solve3(z_.data());  // the first guess: the factored matrix's answer
+  solve3(z_.data(), team);  // the first guess: the factored matrix's answer
   std::copy(z_.begin(), z_.end(), xyz);
   if (b_norm == 0.0) return 0;
   multiply3(layer, spring_weight, xyz, q_.data());
   for (std::size_t i = 0; i < m; ++i)
     r_[i] -= q_[i];
   z_ = r_;
-  solve3(z_.data());
+  solve3(z_.data(), team);
   p_ = z_;
   double rz = dot(r_, z_);
   for (int it = 0; it < max_iterations; ++it) {
@@ -154,7 +250,7 @@ int SpringLaplacian::solve3_near(const SpringLayer& layer, const std::vector<dou
       r_[i] -= step * q_[i];
     }
     z_ = r_;
-    solve3(z_.data());
+    solve3(z_.data(), team);
     const double rz_new = dot(r_, z_);
     for (std::size_t i = 0; i < m; ++i)
       p_[i] = z_[i] + rz_new / rz * p_[i];

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/step_threads.h"
 #include "core/network/cloth_network.h"
 
 namespace neurocloth {
@@ -31,7 +32,10 @@ class SpringLaplacian {
   // xyz <- P^-1 xyz for the three components stored one after another
   // (x0 x1 ... y0 y1 ... z0 z1 ...): 3 * nodes() values. Planar, as the
   // cloth's state is, so the local step's spring loops read whole vectors.
-  void solve3(double* xyz) const;
+  // On a cloth of kMinThreadedNodes nodes or more the factor is ordered as two
+  // halves and the separator between them, and a team's first two threads
+  // solve the halves at once; the result does not depend on the team.
+  void solve3(double* xyz, StepThreads* team = nullptr) const;
 
   // True when factor() was last called with exactly these arguments.
   bool same_as(const std::vector<double>& node_weight, const std::vector<double>& spring_weight,
@@ -49,7 +53,9 @@ class SpringLaplacian {
   // iterations when P' is close to the factored P. `xyz` (planar, as solve3's)
   // holds b on entry, x on return. Returns the iterations taken, or -1 when it did not converge.
   int solve3_near(const SpringLayer& layer, const std::vector<double>& spring_weight, double* xyz,
-                  double tolerance, int max_iterations) const;
+                  double tolerance, int max_iterations, StepThreads* team = nullptr) const;
+  // True when the factor is ordered as two halves and a separator (solve3).
+  bool dissected() const { return half_ > 0; }
   // Entries of the factor (a cost figure: each solve reads them once).
   std::size_t factor_entries() const { return row_.size(); }
 
@@ -61,10 +67,23 @@ class SpringLaplacian {
   std::vector<double> value_;
   std::vector<std::int32_t> perm_;  // node i is row perm_[i] of the factor
   std::vector<double> inv_pivot_;   // 1 / the diagonal of L
+  // The dissection (spring_laplacian_order.cpp): columns [0, half_) are one
+  // half of the nodes, [half_, separator_) the other, [separator_, n_) the
+  // nodes between them, which neither half's columns pass over. A half's
+  // column j has its rows in its own half up to separator_rows_[j], then in
+  // the separator. half_ == 0: not dissected.
+  std::int32_t half_ = 0, separator_ = 0;
+  std::vector<std::int32_t> separator_rows_;
   // A node's x, y, z and a pad, for the solves (a GCC/Clang vector: the
   // compilers we build with).
   typedef double Node4 __attribute__((vector_size(32)));
   mutable std::vector<Node4> work4_;
+  // What each half subtracts from the separator's rows in the forward solve,
+  // kept apart so the halves never write one row (added in a fixed order).
+  mutable std::vector<Node4> separator_sums_[2];
+  // The forward solve's columns [begin, end) of one half, and the backward's.
+  void forward_half(std::int32_t begin, std::int32_t end, std::vector<Node4>& sums) const;
+  void backward(std::int32_t begin, std::int32_t end) const;
   mutable std::vector<double> r_, z_, p_, q_;
   // y = P' x for the matrix with these spring weights (on this factor's nodes).
   void multiply3(const SpringLayer& layer, const std::vector<double>& spring_weight,
