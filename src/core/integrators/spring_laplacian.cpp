@@ -69,7 +69,9 @@ bool SpringLaplacian::factor(const SpringLayer& layer, const std::vector<double>
     if (col_start_[j] >= col_start_[j + 1] || row_[col_start_[j]] != static_cast<std::int32_t>(j) ||
         !(value_[col_start_[j]] > 0.0))
       return false;
-  perm_ = place;
+  node_at_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    node_at_[static_cast<std::size_t>(place[i])] = static_cast<std::int32_t>(i);
   // Where each half's column passes into the separator's rows; a column of
   // one half with a row in the other would break the dissection (it cannot:
   // no edge crosses the separator, and elimination only joins nodes through
@@ -150,11 +152,22 @@ void SpringLaplacian::solve3(double* xyz, StepThreads* team) const {
   // x, y, z and a pad per node: one 4-wide multiply and subtract per factor
   // entry instead of three scalar ones.
   Node4* y = work4_.data();
-  const double* const x0 = xyz;
-  const double* const y0 = xyz + n_;
-  const double* const z0 = xyz + 2 * n_;
-  for (std::int32_t i = 0; i < n_; ++i)
-    y[perm_[i]] = Node4{x0[i], y0[i], z0[i], 0.0};
+  // Rows [begin, end) of the factor from their nodes, and back: each part
+  // moves its own rows.
+  auto load = [&](std::int32_t begin, std::int32_t end) {
+    for (std::int32_t j = begin; j < end; ++j) {
+      const std::int32_t i = node_at_[static_cast<std::size_t>(j)];
+      y[j] = Node4{xyz[i], xyz[n_ + i], xyz[2 * n_ + i], 0.0};
+    }
+  };
+  auto store = [&](std::int32_t begin, std::int32_t end) {
+    for (std::int32_t j = begin; j < end; ++j) {
+      const std::int32_t i = node_at_[static_cast<std::size_t>(j)];
+      xyz[i] = y[j][0];
+      xyz[n_ + i] = y[j][1];
+      xyz[2 * n_ + i] = y[j][2];
+    }
+  };
   // L y' = y: each column's pivot, then its entries below. The halves first
   // (at once on a team), their sums into the separator's rows added after, in
   // one order whatever the team.
@@ -177,23 +190,27 @@ void SpringLaplacian::solve3(double* xyz, StepThreads* team) const {
         for (int p = 0; p < 2; ++p)
           fn(p);
     };
-    halves([&](int p) { forward_half(begin[p], end[p], separator_sums_[p]); });
+    halves([&](int p) {
+      load(begin[p], end[p]);
+      forward_half(begin[p], end[p], separator_sums_[p]);
+    });
+    load(separator_, n_);
     for (std::int32_t r = separator_; r < n_; ++r) {
       const auto s = static_cast<std::size_t>(r - separator_);
       y[r] = (y[r] - separator_sums_[0][s]) - separator_sums_[1][s];
     }
     forward(separator_, n_);
     backward(separator_, n_);
-    halves([&](int p) { backward(begin[p], end[p]); });
+    store(separator_, n_);
+    halves([&](int p) {
+      backward(begin[p], end[p]);
+      store(begin[p], end[p]);
+    });
   } else {
+    load(0, n_);
     forward(0, n_);
     backward(0, n_);
-  }
-  for (std::int32_t i = 0; i < n_; ++i) {
-    const Node4& t = y[perm_[i]];
-    xyz[i] = t[0];
-    xyz[n_ + i] = t[1];
-    xyz[2 * n_ + i] = t[2];
+    store(0, n_);
   }
 }
 

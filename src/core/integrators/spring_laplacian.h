@@ -62,11 +62,11 @@ class SpringLaplacian {
  private:
   std::int32_t n_ = 0;
   // The lower factor L of the permuted P, column by column (CSC), the diagonal
-  // first in every column; P = perm^T L L^T perm.
+  // first in every column; P = perm^T L L^T perm (perm: node_at_).
   std::vector<std::int32_t> col_start_, row_;
   std::vector<double> value_;
-  std::vector<std::int32_t> perm_;  // node i is row perm_[i] of the factor
-  std::vector<double> inv_pivot_;   // 1 / the diagonal of L
+  std::vector<std::int32_t> node_at_;  // row j of the factor is node node_at_[j]
+  std::vector<double> inv_pivot_;      // 1 / the diagonal of L
   // The dissection (spring_laplacian_order.cpp): columns [0, half_) are one
   // half of the nodes, [half_, separator_) the other, [separator_, n_) the
   // nodes between them, which neither half's columns pass over. A half's
