@@ -17,6 +17,7 @@
 #include <mutex>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace neurocloth {
@@ -73,17 +74,43 @@ class StepThreads {
   std::condition_variable start_, done_;
 };
 
-// Calls fn(begin, end) on the parts of the nodes [0, nodes): one part per
-// member of `team` when there is one and the cloth is large enough to pay for
-// it, else once, whole, on the calling thread.
+// True when a sweep over a cloth of `nodes` nodes is split among `team`.
+inline bool splits(const StepThreads* team, std::size_t nodes) {
+  return team != nullptr && team->size() > 1 && nodes >= kMinThreadedNodes;
+}
+
+// Calls fn(begin, end) on the parts of [0, items) (a cloth's springs, say):
+// one part per member of `team` when there is one and the cloth, of `nodes`
+// nodes, is large enough to pay for it, else once, whole, on the calling thread.
 template <class Fn>
-void for_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn) {
-  if (team == nullptr || team->size() == 1 || nodes < kMinThreadedNodes) {
-    fn(std::size_t{0}, nodes);
+void for_parts(StepThreads* team, std::size_t nodes, std::size_t items, Fn&& fn) {
+  if (!splits(team, nodes)) {
+    fn(std::size_t{0}, items);
     return;
   }
   const int parts = team->size();
-  team->run([&](int p) { fn(part_begin(nodes, p, parts), part_begin(nodes, p + 1, parts)); });
+  team->run([&](int p) { fn(part_begin(items, p, parts), part_begin(items, p + 1, parts)); });
+}
+
+// The same on the nodes [0, nodes) themselves.
+template <class Fn>
+void for_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn) {
+  for_parts(team, nodes, nodes, std::forward<Fn>(fn));
+}
+
+// Calls fn(0) and fn(1): at once on the team's first two members when it has
+// two or more, else one after the other. For work cut in two by the data (not
+// by the team), so that the bits do not depend on the team.
+template <class Fn>
+void run_halves(StepThreads* team, Fn&& fn) {
+  if (team != nullptr && team->size() >= 2) {
+    team->run([&](int part) {
+      if (part < 2) fn(part);
+    });
+  } else {
+    fn(0);
+    fn(1);
+  }
 }
 
 // fn(begin, end) -> T on the same parts as for_node_parts, the results folded
@@ -91,8 +118,7 @@ void for_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn) {
 // not depend on the team, only when combine is not associative).
 template <class T, class Fn, class Combine>
 T reduce_node_parts(StepThreads* team, std::size_t nodes, Fn&& fn, Combine&& combine) {
-  if (team == nullptr || team->size() == 1 || nodes < kMinThreadedNodes)
-    return fn(std::size_t{0}, nodes);
+  if (!splits(team, nodes)) return fn(std::size_t{0}, nodes);
   const int parts = team->size();
   std::array<T, kMaxStepThreads> results{};
   team->run([&](int p) {

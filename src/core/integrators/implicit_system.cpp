@@ -37,19 +37,6 @@ void for_entries(std::size_t n, std::size_t begin, std::size_t end, Fn&& fn) {
       fn(k);
 }
 
-// fn(begin, end) on parts of the springs [0, springs): split as for_node_parts
-// splits the nodes, when it would split them. Each spring's work is its own,
-// so any split gives the same bits.
-template <class Fn>
-void for_spring_parts(StepThreads* team, std::size_t nodes, std::size_t springs, Fn&& fn) {
-  if (team == nullptr || team->size() == 1 || nodes < kMinThreadedNodes) {
-    fn(std::size_t{0}, springs);
-    return;
-  }
-  const int parts = team->size();
-  team->run([&](int p) { fn(part_begin(springs, p, parts), part_begin(springs, p + 1, parts)); });
-}
-
 }  // namespace
 
 ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
@@ -106,7 +93,7 @@ void ImplicitSystem::linearise(const ClothNetwork& net, const ClothState& s, boo
   const SpringLayer& L = net.springs;
   for (ProductOperands& o : operands_)
     o.stale = true;
-  for_spring_parts(team, net.node_count(), L.size(), [&](std::size_t begin, std::size_t end) {
+  for_parts(team, net.node_count(), L.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Vec3 d = s.position(L.node_b[i]) - s.position(L.node_a[i]);
       const double len = d.norm();
@@ -161,7 +148,7 @@ const ImplicitSystem::ProductOperands& ImplicitSystem::prepare_product(const Clo
     double* B = o.own_blocks.data();
     const double* K = k_.data();
     const double *dx = dir_.data(), *dy = dx + S, *dz = dy + S;
-    for_spring_parts(team, n, S, [&](std::size_t begin, std::size_t end) {
+    for_parts(team, n, S, [&](std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
         const double c = beta * L.damping[s];
         B[s] = gamma * K[s] + c * dx[s] * dx[s];

@@ -172,14 +172,7 @@ void damp_springs(const ClothNetwork& net, const ClothState& p, double h, double
           if (j1 > j0) damp_chunk(net, p, h, vx, vy, vz, first + j0, j1 - j0, a + j0, b + j0);
         });
   };
-  if (team != nullptr && team->size() >= 2) {
-    team->run([&](int part) {
-      if (part < 2) group(part);
-    });
-  } else {
-    group(0);
-    group(1);
-  }
+  run_halves(team, group);
   group(2);
 }
 

@@ -181,16 +181,7 @@ void SpringLaplacian::solve3(double* xyz, StepThreads* team) const {
   };
   if (half_ > 0) {
     const std::int32_t begin[2] = {0, half_}, end[2] = {half_, separator_};
-    auto halves = [&](auto&& fn) {
-      if (team != nullptr && team->size() >= 2)
-        team->run([&](int p) {
-          if (p < 2) fn(p);
-        });
-      else
-        for (int p = 0; p < 2; ++p)
-          fn(p);
-    };
-    halves([&](int p) {
+    run_halves(team, [&](int p) {
       load(begin[p], end[p]);
       forward_half(begin[p], end[p], separator_sums_[p]);
     });
@@ -202,7 +193,7 @@ void SpringLaplacian::solve3(double* xyz, StepThreads* team) const {
     forward(separator_, n_);
     backward(separator_, n_);
     store(separator_, n_);
-    halves([&](int p) {
+    run_halves(team, [&](int p) {
       backward(begin[p], end[p]);
       store(begin[p], end[p]);
     });
