@@ -49,34 +49,31 @@ ImplicitSystem::ImplicitSystem(const ClothNetwork& net)
     v->assign(dofs, 0.0);
 }
 
-void ImplicitSystem::invert_diagonal_blocks(const ClothNetwork& net, double alpha, double beta,
-                                            double gamma, StepThreads* team) {
+void ImplicitSystem::invert_diagonal_blocks(const ClothNetwork& net, const ProductOperands& A,
+                                            StepThreads* team) {
   const std::size_t n = net.node_count();
   blocks_.resize(9 * n);
   const SpringLayer& L = net.springs;
+  const std::size_t S = springs_;
+  const double* const B = operand_blocks(A);
   for_node_parts(team, n, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const double m = alpha / net.masses.inverse_mass[i];
+    for (std::size_t i = begin; i < end; ++i)
       for (int e = 0; e < 9; ++e)
-        blocks_[9 * i + e] = e % 4 == 0 ? m : 0.0;
-    }
+        blocks_[9 * i + e] = e % 4 == 0 ? A.mass[i] : 0.0;
     const auto lo = static_cast<std::int32_t>(begin), hi = static_cast<std::int32_t>(end);
     spring_chunks::for_each_chunk(
         L, [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
           if (!((a < hi && a + count > lo) || (b < hi && b + count > lo))) return;
           for (std::int32_t j = 0; j < count; ++j) {
             const auto s = static_cast<std::size_t>(first + j);
-            const double c = beta * L.damping[s];
-            const double d[3] = {direction(s, 0), direction(s, 1), direction(s, 2)};
-            const double K[6] = {stiffness(s, 0), stiffness(s, 1), stiffness(s, 2),
-                                 stiffness(s, 3), stiffness(s, 4), stiffness(s, 5)};
-            const double k[9] = {K[0], K[1], K[2], K[1], K[3], K[4], K[2], K[4], K[5]};
+            const double e[6] = {B[s],         B[S + s],     B[2 * S + s],
+                                 B[3 * S + s], B[4 * S + s], B[5 * S + s]};
+            const double block[9] = {e[0], e[1], e[2], e[1], e[3], e[4], e[2], e[4], e[5]};
             for (const std::int32_t node : {a + j, b + j}) {
               if (node < lo || node >= hi) continue;
-              double* B = &blocks_[9 * static_cast<std::size_t>(node)];
-              for (int r = 0; r < 3; ++r)
-                for (int col = 0; col < 3; ++col)
-                  B[3 * r + col] += gamma * k[3 * r + col] + c * d[r] * d[col];
+              double* D = &blocks_[9 * static_cast<std::size_t>(node)];
+              for (int k = 0; k < 9; ++k)
+                D[k] += block[k];
             }
           }
         });
@@ -241,7 +238,7 @@ CgResult ImplicitSystem::solve(const ClothNetwork& net, double alpha, double bet
   const bool cycled = laplacian == nullptr && multigrid != nullptr && multigrid->built();
   ImplicitMultigrid::FineLevel fine;
   if (cycled || laplacian != nullptr) {
-    invert_diagonal_blocks(net, alpha, beta, gamma, team);
+    invert_diagonal_blocks(net, prepare_product(net, alpha, beta, gamma, team), team);
     fine.block_inverse = &blocks_;
     fine.apply = [&](const double* u, double* y) { apply(net, alpha, beta, gamma, u, y); };
   }

@@ -75,7 +75,9 @@ class ImplicitSystem {
   // reordered per iteration. The public apply() and solve() take interleaved
   // vectors and convert at their ends.
   //
-  // The product's operands for (alpha, beta, gamma) at the last linearise():
+  // The product's operands for (alpha, beta, gamma) at the last linearise(),
+  // of the network as it was then (a caller changing masses or dampings
+  // linearises again):
   // per spring the whole block gamma K + beta d u u^T, one array per entry so
   // that a chunk of springs is a run of vector lanes, and per node alpha m.
   // Two sets are kept: the implicit step asks for K v0 and for its system's
@@ -111,8 +113,7 @@ class ImplicitSystem {
   // blocks_ <- the inverses of A's 3x3 diagonal blocks (the identity on pinned nodes).
   // Summed node by node over the spring chunks, so a team's parts give one
   // thread's bits.
-  void invert_diagonal_blocks(const ClothNetwork& net, double alpha, double beta, double gamma,
-                              StepThreads* team);
+  void invert_diagonal_blocks(const ClothNetwork& net, const ProductOperands& A, StepThreads* team);
   // Per spring: K block (xx xy xz yy yz zz) and D block = d * u u^T stored as the
   // unit direction u and the damping weight; planar, one array per entry (so K
   // alone is a product's operands as it is).
