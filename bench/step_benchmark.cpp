@@ -90,9 +90,9 @@ void BM_DampingStep(benchmark::State& st) {
   scene.solver.damping =
       st.range(0) == 1 ? DampingMode::implicit_springwise : DampingMode::explicit_force;
   time_steps(st, scene, IntegratorKind::network);
-  std::vector<double> k, d;
-  const double bound = stable_step_bound(scene.build_network(), 2.0, k, d,
-                                         scene.solver.damping == DampingMode::explicit_force);
+  const ClothNetwork net = scene.build_network();
+  const double bound =
+      integrator_step_bound(net, *make_integrator(scene.solver, net), scene.solver.step_bound);
   st.counters["steps_per_simulated_s"] = 1.0 / (0.5 * bound);
   st.SetLabel(std::string("network, damping ") + to_string(scene.solver.damping));
 }

@@ -80,9 +80,14 @@ double next_cost(const TradeRow& row, const SampledRun& run) {
 
 double first_step(const Scene& scene, IntegratorKind kind, double interval) {
   const ClothNetwork net = scene.build_network();
-  const double limit = make_integrator(kind, net)->stability_limit();
-  if (std::isinf(limit)) return interval / 4;  // implicit_euler, projective: no bound to meet
-  const double bound = stable_step_bound(net, limit);
+  const auto integrator = make_integrator(kind, net);
+  if (std::isinf(integrator->stability_limit()))
+    return interval / 4;  // implicit_euler, projective: no bound to meet
+  // Gershgorin's bound whatever the scene's setting: the sweep starts at twice
+  // it, near the stability edge (Gershgorin's lies 1.2-2.6 times under it,
+  // docs/stability.md); twice the spectral bound can be 1.8 times past the
+  // edge, where a level is nothing but its blow-up.
+  const double bound = integrator_step_bound(net, *integrator, StepBound::gershgorin);
   double h = interval;
   while (h > 2 * bound && h > interval * 1e-12)
     h /= 2;
@@ -288,17 +293,14 @@ struct Sweep {
   // values giving the same cap as the one before are skipped. With the damping
   // taken implicitly the bound is the springs' stiffness alone.
   void adaptive(DampingMode damping) {
-    const ClothNetwork net = scene.build_network();
-    std::vector<double> k_sum, d_sum;
-    const double bound =
-        stable_step_bound(net, make_integrator(IntegratorKind::network, net)->stability_limit(),
-                          k_sum, d_sum, damping == DampingMode::explicit_force);
-    const char* method =
-        damping == DampingMode::explicit_force ? kAdaptiveMethod : kAdaptiveImplicitMethod;
     SolverSettings s = scene.solver;
     s.integrator = IntegratorKind::network;
     s.adaptive = true;
     s.damping = damping;
+    const ClothNetwork net = scene.build_network();
+    const double bound = integrator_step_bound(net, *make_integrator(s, net), s.step_bound);
+    const char* method =
+        damping == DampingMode::explicit_force ? kAdaptiveMethod : kAdaptiveImplicitMethod;
     double line_cost = 0, last_cap = -1;
     int level = 0;
     for (double safety = 1; safety > 1e-6; safety /= 2) {

@@ -69,8 +69,9 @@ TradeTable measure_tradeoff(const Scene& scene, const std::string& scene_file,
                             const std::function<void(const std::string&)>& log = {});
 
 // The sweep's largest fixed step for `kind` on `scene`: the largest
-// interval / 2^k at or below twice the explicit stability bound (so the first
-// setting may sit just past it), or interval / 4 for the implicit step.
+// interval / 2^k at or below twice the explicit stability bound by Gershgorin's
+// discs (so the first setting may sit just past the true limit), or
+// interval / 4 for the implicit step.
 double first_step(const Scene& scene, IntegratorKind kind, double interval);
 
 // Why `dt` cannot be one of a plan's steps for sample interval `interval`

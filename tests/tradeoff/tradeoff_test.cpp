@@ -204,7 +204,7 @@ TEST(TradeoffReference, StartsPastTheStabilityBoundAndHalvesIntoIt) {
   EXPECT_EQ(k, std::round(k));
   const ClothNetwork net = scene.build_network();
   const double bound =
-      stable_step_bound(net, make_integrator(IntegratorKind::rk4, net)->stability_limit());
+      integrator_step_bound(net, *make_integrator(IntegratorKind::rk4, net), StepBound::gershgorin);
   EXPECT_LE(h, 2 * bound);
   EXPECT_GT(2 * h, 2 * bound);
   EXPECT_EQ(first_step(scene, IntegratorKind::implicit_euler, 0.25), 0.0625);

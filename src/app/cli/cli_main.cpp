@@ -66,6 +66,10 @@ int main(int argc, char** argv) {
                        "The springs' damping: explicit (the paper's, in the force sum) or implicit "
                        "(spring by spring after the velocity update: larger stable steps on fine "
                        "cloths; network integrator only; docs/stability.md)");
+  simulate->add_option("--step-bound", sim.step_bound,
+                       "What caps the explicit steps: spectral (the default: the largest "
+                       "eigenvalues by Lanczos) or gershgorin (per-node discs, smaller steps; "
+                       "docs/stability.md)");
   simulate->add_option("--size", sim.size,
                        "Run the scene's cloth resized to N x N, keeping its width and mass (as the "
                        "window's --size)");

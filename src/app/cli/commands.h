@@ -53,6 +53,8 @@ struct SimulateOptions {
   std::optional<std::string> precision;
   // --damping explicit|implicit: the scene's solver.damping, overridden.
   std::optional<std::string> damping;
+  // --step-bound spectral|gershgorin: the scene's solver.step_bound, overridden.
+  std::optional<std::string> step_bound;
   std::optional<int> size;  // --size N: sized_scene
 };
 int run_simulate(const SimulateOptions& options);

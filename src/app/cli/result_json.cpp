@@ -30,6 +30,7 @@ nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& num
   doc["integrator"] = to_string(s.integrator);
   doc["precision"] = to_string(s.precision);
   doc["damping"] = to_string(s.damping);
+  doc["step_bound"] = to_string(s.step_bound);
   doc["adaptive"] = s.adaptive;
   doc["dt"] = s.dt;
   doc["time"] = sim.time();

@@ -154,6 +154,10 @@ int run_simulate(const SimulateOptions& o) {
     throw InputError(
         "command line", "--damping",
         "unknown damping '" + *o.damping + "' (expected one of: " + kDampingNames + ")");
+  if (o.step_bound && !parse_step_bound(*o.step_bound, scene.solver.step_bound))
+    throw InputError(
+        "command line", "--step-bound",
+        "unknown step bound '" + *o.step_bound + "' (expected one of: " + kStepBoundNames + ")");
   if (scene.solver.damping == DampingMode::implicit_springwise &&
       scene.solver.integrator != IntegratorKind::network)
     throw InputError("command line", o.damping ? "--damping" : "--integrator",

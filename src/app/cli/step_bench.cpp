@@ -24,11 +24,8 @@ Scene with_bench_step(Scene scene, IntegratorKind kind) {
   scene.solver.integrator = kind;
   scene.solver.adaptive = false;
   const ClothNetwork net = scene.build_network();
-  double bound = stable_step_bound(net, 2.0);
-  if (kind == IntegratorKind::explicit_euler) {
-    const double damped = explicit_euler_step_bound(net);
-    if (damped > 0) bound = std::min(bound, damped);
-  }
+  const double bound =
+      integrator_step_bound(net, *make_integrator(scene.solver, net), scene.solver.step_bound);
   scene.solver.dt = std::min(scene.solver.dt, 0.5 * bound);
   return scene;
 }

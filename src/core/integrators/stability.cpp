@@ -61,12 +61,22 @@ double explicit_euler_step_bound(const ClothNetwork& net, std::vector<double>& d
 }
 
 double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
-                             std::vector<double>& k_sum, std::vector<double>& d_sum) {
-  const double bound = stable_step_bound(net, integrator.stability_limit(), k_sum, d_sum,
-                                         !integrator.damps_springs());
+                             StepBoundScratch& scratch, StepBound kind) {
+  const double limit = integrator.stability_limit();
+  const bool with_damping = !integrator.damps_springs();
+  const double bound =
+      kind == StepBound::spectral
+          ? spectral_step_bound(net, limit, scratch.spectral, with_damping)
+          : stable_step_bound(net, limit, scratch.k_sum, scratch.d_sum, with_damping);
   if (integrator.kind() != IntegratorKind::explicit_euler) return bound;
-  const double damped = explicit_euler_step_bound(net, d_sum);
+  const double damped = explicit_euler_step_bound(net, scratch.d_sum);
   return damped > 0.0 ? std::min(bound, damped) : bound;
+}
+
+double integrator_step_bound(const ClothNetwork& net, const Integrator& integrator,
+                             StepBound kind) {
+  StepBoundScratch scratch;
+  return integrator_step_bound(net, integrator, scratch, kind);
 }
 
 }  // namespace neurocloth

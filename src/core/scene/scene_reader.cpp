@@ -200,9 +200,10 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
   if (!in.has(root, "solver")) return s;
   const json& v = root.at("solver");
   const std::string field = "solver";
-  in.allow_only(v, field,
-                {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
-                 "check_interval", "iterations", "linear_tolerance", "precision", "damping"});
+  in.allow_only(
+      v, field,
+      {"integrator", "dt", "adaptive", "safety", "growth_tolerance", "min_step_fraction",
+       "check_interval", "iterations", "linear_tolerance", "precision", "damping", "step_bound"});
   if (in.has(v, "integrator")) {
     const std::string name = in.string(v.at("integrator"), field + ".integrator");
     const auto kind = parse_integrator(name);
@@ -248,6 +249,12 @@ SolverSettings read_solver(const JsonFields& in, const json& root) {
     if (s.damping == DampingMode::implicit_springwise && s.integrator != IntegratorKind::network)
       in.fail(field + ".damping", std::string("\"implicit\" is for the network integrator, not ") +
                                       to_string(s.integrator));
+  }
+  if (in.has(v, "step_bound")) {
+    const std::string name = in.string(v.at("step_bound"), field + ".step_bound");
+    if (!parse_step_bound(name, s.step_bound))
+      in.fail(field + ".step_bound",
+              "unknown step bound '" + name + "' (expected one of: " + kStepBoundNames + ")");
   }
   return s;
 }

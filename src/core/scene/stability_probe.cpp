@@ -263,6 +263,8 @@ CriticalStep critical_step(const CriticalSpec& spec) {
   CriticalStep out{};
   const double limit = make_integrator(spec.integrator, probe.network())->stability_limit();
   out.gershgorin = stable_step_bound(probe.network(), limit);
+  SpectralScratch scratch;
+  out.spectral = spectral_step_bound(probe.network(), limit, scratch);
   SolverSettings s = probe.settings();
   s.adaptive = true;
   probe.set_solver_settings(s);

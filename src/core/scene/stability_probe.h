@@ -111,6 +111,7 @@ struct CriticalStep {
   double c;           // dt / sqrt(m / k)
   double cap;         // Simulation::step_cap() on the same cloth (adaptive, dt large)
   double gershgorin;  // stable_step_bound() with the integrator's limit, no safety
+  double spectral;    // spectral_step_bound() with the integrator's limit, no safety
 };
 
 Scene critical_scene(const CriticalSpec& spec);

@@ -267,7 +267,10 @@ double Simulation::step_cap() {
   if (ctx_.step_cap < 0) {
     // Recomputed after every weight change, a ramp's steps too: the bound is
     // not monotone along a ramp (damping moves linearly, mass geometrically).
-    const double bound = integrator_step_bound(net_, *integrator_, ctx_.bound_k, ctx_.bound_d);
+    // A ramp moves the weights at every step, so it takes Gershgorin's bound,
+    // which costs a sweep, where the spectral one costs a hundred or so.
+    const StepBound kind = ramping() ? StepBound::gershgorin : settings_.step_bound;
+    const double bound = integrator_step_bound(net_, *integrator_, ctx_.bound, kind);
     ctx_.step_cap = std::min(settings_.dt, settings_.adaptive_settings.safety * bound);
   }
   return ctx_.step_cap;

@@ -88,10 +88,7 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
     : net_(std::move(network)),
       constraints_(std::move(constraints)),
       settings_(validated(settings)),  // before the integrator is made from them
-      integrator_(make_integrator(settings.integrator, net_,
-                                  settings.adaptive_settings.min_step_fraction, settings.iterations,
-                                  settings.linear_tolerance, settings.implicit_preconditioner,
-                                  settings.damping == DampingMode::implicit_springwise)) {
+      integrator_(make_integrator(settings, net_)) {
   if (initial.size() != net_.node_count())
     throw std::invalid_argument("state size differs from the network's");
   check_state(initial, "initial state");
@@ -171,10 +168,7 @@ void Simulation::restore(const SimulationState& s) {
 void Simulation::set_solver_settings(const SolverSettings& settings) {
   validate(settings);  // before anything changes
   // Made before anything changes too: an integrator may refuse this cloth.
-  std::unique_ptr<Integrator> integrator = make_integrator(
-      settings.integrator, net_, settings.adaptive_settings.min_step_fraction, settings.iterations,
-      settings.linear_tolerance, settings.implicit_preconditioner,
-      settings.damping == DampingMode::implicit_springwise);
+  std::unique_ptr<Integrator> integrator = make_integrator(settings, net_);
   settings_ = settings;
   set_spring_arithmetic(run_.inputs, settings_);
   if (ctx_.threads.size() != settings_.threads) ctx_.threads = OwnedStepThreads(settings_.threads);

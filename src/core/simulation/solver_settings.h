@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "core/base/step_threads.h"
 #include "core/integrators/integrator.h"
 #include "core/integrators/spring_damping.h"
+#include "core/integrators/stability.h"
 #include "core/integrators/step_controller.h"
 #include "core/io/physical_limits.h"
 #include "core/network/spring_kernel.h"
@@ -87,11 +89,24 @@ struct SolverSettings {
   // spring_damping.h), which lifts the damping's bound on the step. The
   // network integrator only; docs/stability.md, "Damping taken implicitly".
   DampingMode damping = DampingMode::explicit_force;
+  // Which bound caps the explicit steps (stability.h): the spectrum's, or
+  // Gershgorin's discs (the bound before; a comparison, and what a ramp uses
+  // while its weights move). docs/stability.md, "The spectral bound".
+  StepBound step_bound = StepBound::spectral;
   // What preconditions the implicit_euler step's conjugate gradient. Not a
   // scene field, as `kernel`: a test or a benchmark compares them; the step
   // solves the same system to the same tolerance whichever it is.
   ImplicitPreconditioner implicit_preconditioner = ImplicitPreconditioner::automatic;
 };
+
+// The integrator these settings ask for, sized for `net` (make_integrator with
+// every setting it takes, in one place).
+inline std::unique_ptr<Integrator> make_integrator(const SolverSettings& s,
+                                                   const ClothNetwork& net) {
+  return make_integrator(s.integrator, net, s.adaptive_settings.min_step_fraction, s.iterations,
+                         s.linear_tolerance, s.implicit_preconditioner,
+                         s.damping == DampingMode::implicit_springwise);
+}
 
 // Why `precision` cannot go with `integrator`, or "" when it can. The implicit
 // integrators' Newton and local-global solves pair the forces with a double

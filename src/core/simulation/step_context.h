@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/base/step_threads.h"
+#include "core/integrators/stability.h"
 #include "core/network/cloth_state.h"
 #include "core/network/module_clock.h"
 
@@ -32,8 +33,8 @@ struct StepContext {
   // Where the nodes were when a fixed step taken in place began: what the
   // constraints read as the start (sized only when there are constraints).
   NodeVectors step_start;
-  std::vector<double> bound_k, bound_d;  // scratch of the stability bound
-  long budget_left = 0;                  // trial steps this advance() may still take
+  StepBoundScratch bound;  // scratch of the stability bound
+  long budget_left = 0;    // trial steps this advance() may still take
 
   // What a change leaves stale: `weights` (the network's weights or the
   // integrator) also drops the step cap; `forces` (the cloth, an external

@@ -22,13 +22,13 @@ Scene hanging(bool guarded, double dt = 1e-3) {
   return scene;
 }
 
-// The cap computed afresh from the network as it is now (not the cached one).
+// The cap computed afresh from the network as it is now (not the cached one),
+// with the bound a ramp in progress takes (Gershgorin's) or the settings' own.
 double fresh_cap(const Simulation& sim) {
-  const auto integrator = make_integrator(sim.settings().integrator, sim.network());
-  std::vector<double> k_sum, d_sum;
-  return std::min(sim.settings().dt,
-                  sim.settings().adaptive_settings.safety *
-                      integrator_step_bound(sim.network(), *integrator, k_sum, d_sum));
+  const auto integrator = make_integrator(sim.settings(), sim.network());
+  const StepBound kind = sim.ramping() ? StepBound::gershgorin : sim.settings().step_bound;
+  return std::min(sim.settings().dt, sim.settings().adaptive_settings.safety *
+                                         integrator_step_bound(sim.network(), *integrator, kind));
 }
 
 TEST(StableSubsteps, AFixedStepAboveTheCapRunsAsSubstepsInsteadOfExploding) {
@@ -100,8 +100,11 @@ TEST(StableSubsteps, AStiffeningRampIsFollowed) {
     const RunStatus s = sim.advance(1.0);
     if (guarded) {
       EXPECT_EQ(s, RunStatus::ok) << sim.divergence_reason();
-      EXPECT_GT(sim.substeps(), 20);
-      EXPECT_GT(sim.steps(), 100 + 900 * 20);
+      // 1000 times stiffer: about sqrt(1000) times the substeps of one step
+      // (the spectral bound after the ramp: 19; Gershgorin's gave 22).
+      EXPECT_EQ(sim.substeps(), static_cast<long>(std::ceil(1e-3 / fresh_cap(sim))));
+      EXPECT_GE(sim.substeps(), 19);
+      EXPECT_GT(sim.steps(), 100 + 900 * 19);
     } else {
       EXPECT_EQ(s, RunStatus::diverged);
     }
