@@ -138,20 +138,19 @@ double laplacian_top_eigenvalue(const ClothNetwork& net, const std::vector<doubl
 double spectral_step_bound(const ClothNetwork& net, double limit, SpectralScratch& s,
                            bool with_damping) {
   const double gershgorin = stable_step_bound(net, limit, s.k_sum, s.d_sum, with_damping);
-  if (!std::isfinite(gershgorin)) return gershgorin;
-  const double slope = net.springs.function.max_slope();
+  if (!std::isfinite(gershgorin) || !with_damping) return gershgorin;
+  // The springs' part stays Gershgorin's (see the header): its largest disc
+  // (k_sum already holds k |slope|).
+  double omega2 = 0;
+  for (std::size_t i = 0; i < net.node_count(); ++i)
+    if (net.masses.free[i] != 0.0)
+      omega2 = std::max(omega2, 2.0 * std::abs(net.masses.inverse_mass[i]) * s.k_sum[i]);
   s.weight.resize(net.spring_count());
   for (std::size_t k = 0; k < s.weight.size(); ++k)
-    s.weight[k] = std::abs(net.springs.stiffness[k]) * slope;
-  const double lambda_k = lanczos_top_eigenvalue(net, s);
-  double lambda_d = 0;
-  if (with_damping) {
-    for (std::size_t k = 0; k < s.weight.size(); ++k)
-      s.weight[k] = std::abs(net.springs.damping[k]);
-    lambda_d = lanczos_top_eigenvalue(net, s);
-  }
-  if (!std::isfinite(lambda_k) || !std::isfinite(lambda_d)) return gershgorin;
-  const double denom = lambda_d + std::sqrt(lambda_d * lambda_d + limit * limit * lambda_k);
+    s.weight[k] = std::abs(net.springs.damping[k]);
+  const double lambda_d = lanczos_top_eigenvalue(net, s);
+  if (!std::isfinite(lambda_d) || !std::isfinite(omega2)) return gershgorin;
+  const double denom = lambda_d + std::sqrt(lambda_d * lambda_d + limit * limit * omega2);
   if (!(denom > 0.0)) return gershgorin;
   return std::max(gershgorin, limit * limit / denom);
 }

@@ -1,16 +1,24 @@
 #pragma once
-// The explicit step bound from the spectrum itself rather than Gershgorin's discs.
+// The explicit step bound with the damping's part from the spectrum itself
+// rather than Gershgorin's discs.
 //
-// Each spring's stiffness Jacobian is at most k |slope| I and its damping d u u^T
-// at most d I (u u^T <= I), so M^-1 K and M^-1 D are bounded by the scalar
-// graph Laplacians L_k, L_d of the springs (weights k |slope| and d) over the
-// free nodes' masses: lambda_K <= lambda_max(M^-1 L_k), likewise lambda_D.
-// Gershgorin bounds those by 2 w_i sum_s c_s at the worst node; the true top
-// eigenvalue of a cloth's grid is well below it (interior 16.3 against 24 for
-// equal damping on structural, shear and bend springs; at the light edge and
-// corner nodes further still). Semi-implicit Euler with damping is stable while
-// M - h D / 2 - h^2 K / 4 > 0, which holds when h^2 lambda_K + 2 h lambda_D < 4:
-// the same formula as stability.h with gamma -> lambda_D, omega^2 -> lambda_K.
+// A spring's damping d u u^T is at most d I (u u^T <= I), so M^-1 D is bounded
+// by the scalar graph Laplacian L_d of the springs' viscosities over the free
+// nodes' masses: lambda_D <= lambda_max(M^-1 L_d), whatever the cloth's shape.
+// Gershgorin bounds it by 2 w_i sum_s d_s at the worst node; the true top
+// eigenvalue of a cloth's grid is well below it (16.3 against 24 inside for
+// equal damping on structural, shear and bend springs, and further still at the
+// light edge and corner nodes). Semi-implicit Euler with damping is stable
+// while h^2 omega^2 + 2 h gamma < 4 (stability.h), so on a fine cloth, where
+// the damping sets the step, the step grows by as much.
+//
+// The springs' part (omega^2) stays Gershgorin's largest disc. The same
+// Laplacian bound holds for it only while every spring's Jacobian is at most
+// k |slope| I, which a compressed spring's negative transverse stiffness
+// breaks (below half its rest length), and it was measured to fail: on the
+// 128^2 drape with the damping taken implicitly, a cap at 0.5 of the spectral
+// stiffness bound diverged in contact at 0.90 s where Gershgorin's ran
+// (docs/stability.md).
 //
 // The top eigenvalue comes from Lanczos with a fixed pseudo-random start. Its
 // Ritz value approaches from below, so it is divided by (1 - delta): by
@@ -18,7 +26,6 @@
 // P(relative error >= delta) <= 1.648 sqrt(n) exp(-sqrt(delta) (2k - 1)), and
 // k is chosen for delta = 0.02 at a probability of 1e-12. The Gershgorin bound
 // stays the floor: the result is never below stable_step_bound().
-// docs/stability.md ("The spectral bound") gives the measured steps.
 #include <vector>
 
 #include "core/network/cloth_network.h"
@@ -44,9 +51,11 @@ int spectral_lanczos_steps(std::size_t n);
 double laplacian_top_eigenvalue(const ClothNetwork& net, const std::vector<double>& weight,
                                 SpectralScratch& scratch);
 
-// The step bound at the integrator's limit: the spectral bound above, or
-// Gershgorin's where that is larger. `with_damping` false: stiffness alone (the
-// damping taken implicitly, spring_damping.h). Infinity when nothing constrains it.
+// The step bound at the integrator's limit: the damping's part from the
+// spectrum, the springs' from Gershgorin's largest disc, or Gershgorin's
+// per-node bound where that is larger. `with_damping` false (the damping taken
+// implicitly, spring_damping.h): Gershgorin's bound itself. Infinity when
+// nothing constrains it.
 double spectral_step_bound(const ClothNetwork& net, double stability_limit,
                            SpectralScratch& scratch, bool with_damping = true);
 

@@ -110,7 +110,10 @@ TEST(SpringKernel, PortableAndAvx512RunTheSameScenesToTheSameClothWithinAStatedB
   contact.solver.adaptive = false;
   contact.solver.dt = 1.0 / 60;
   contact.solver.substep_above_cap = true;
-  cases.push_back({"sphere_drop (contact)", contact, 0.6, 8e-11});  // 5.06e-11
+  // (4.35e-10 in 972 substeps under the spectral bound's cap, 2026-12-06;
+  // 5.06e-11 in 1188 under Gershgorin's: contact grows the kernels' last-bit
+  // differences, and fewer, longer substeps let them grow more.)
+  cases.push_back({"sphere_drop (contact)", contact, 0.6, 5e-10});
   for (const KernelCase& c : cases) {
     const Simulation portable = run_through(c.scene, SpringKernel::portable, c.seconds);
     const Simulation avx512 = run_through(c.scene, SpringKernel::avx512, c.seconds);
