@@ -1,5 +1,5 @@
 // `simulate`'s options as a user gives them: overrides of the scene's solver
-// (integrator, step, size, precision, damping) and what a run says when its
+// (integrator, step, size, precision, damping, step bound) and what a run says when its
 // step is too large, when it diverges and when its step budget runs out.
 #include "support/cli_fixture.h"
 #include "support/test_support.h"
@@ -63,6 +63,17 @@ TEST_F(Cli, DampingOverridesTheSceneAndIsRefusedByNameWhereItCannotGo) {
   expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--damping",
                       "implicit", "--integrator", "rk4", "--out", result_path()},
                      {"--damping", "rk4"});
+}
+
+TEST_F(Cli, StepBoundOverridesTheSceneAndAWrongOneIsRefusedByName) {
+  const Outcome r = run({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--step-bound",
+                         "gershgorin", "--out", result_path()});
+  ASSERT_EQ(r.code, kOk) << r.err;
+  EXPECT_EQ(read_result().at("step_bound"), "gershgorin");
+  fs::remove(result_path());
+  expect_input_error({"simulate", scene_asset("hanging"), "--seconds", "0.01", "--step-bound",
+                      "tight", "--out", result_path()},
+                     {"--step-bound", "tight", "spectral, gershgorin"});
 }
 
 TEST_F(Cli, AdaptiveRunIsMarkedAdaptive) {
