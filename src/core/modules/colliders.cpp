@@ -239,7 +239,54 @@ constexpr double kTouch = 1e-9;  // m
 constexpr std::size_t kContactBlock = 64;
 struct BlockContacts {
   double phi[kContactBlock], nx[kContactBlock], ny[kContactBlock], nz[kContactBlock];
+  double mu_k[kContactBlock], mu_s[kContactBlock];  // kinetic and static friction
 };
+
+// The correction (the top of the file) of `count` nodes: their contacts
+// (normal f*, signed distance fphi, infinite where none acts, kinetic and static
+// friction), where each step started (b*) and where it landed (positions and
+// velocities, corrected in place). One loop of selects: every operand is
+// computed and then chosen. The arrays are distinct and said so (restrict on
+// the parameters, where GCC honours it), and then the loop vectorises. A node
+// touching but not pressing (depth <= 0, vn >= 0) keeps its step.
+// Collider::resolve_adjoint differentiates these same lines.
+void correct_contacts(std::size_t count, double thickness, double h, const double* __restrict fx,
+                      const double* __restrict fy, const double* __restrict fz,
+                      const double* __restrict fphi, const double* __restrict fmu,
+                      const double* __restrict fstatic, const double* __restrict bx,
+                      const double* __restrict by, const double* __restrict bz,
+                      double* __restrict x, double* __restrict y, double* __restrict z,
+                      double* __restrict vx, double* __restrict vy, double* __restrict vz) {
+  const double reach = thickness + kTouch;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double nx = fx[k], ny = fy[k], nz = fz[k], phi = fphi[k];
+    const double px = x[k], py = y[k], pz = z[k];
+    const double ux = vx[k], uy = vy[k], uz = vz[k];
+    const double vn = ux * nx + uy * ny + uz * nz;
+    const double tx = ux - vn * nx, ty = uy - vn * ny, tz = uz - vn * nz;
+    const double depth = thickness - phi;
+    const bool acts = (phi < reach) & ((depth > 0.0) | (vn < 0.0));
+    const double dvn = std::max(-vn, depth / h);
+    const double mu_k = fmu[k], mu_s = fstatic[k];
+    const double speed = std::sqrt(tx * tx + ty * ty + tz * tz);
+    const double slide = std::max(0.0, 1.0 - mu_k * dvn / speed);
+    const double keep = speed <= mu_s * dvn ? 0.0 : slide;
+    const double sx = px - bx[k], sy = py - by[k], sz = pz - bz[k];
+    const double sn = sx * nx + sy * ny + sz * nz;
+    const double lx = sx - sn * nx, ly = sy - sn * ny, lz = sz - sn * nz;
+    const double push = std::max(depth, 0.0), hold = 1.0 - keep;
+    const double out = std::max(vn, 0.0);
+    const double qx = px + push * nx - hold * lx, qy = py + push * ny - hold * ly,
+                 qz = pz + push * nz - hold * lz;
+    const double wx = out * nx + keep * tx, wy = out * ny + keep * ty, wz = out * nz + keep * tz;
+    x[k] = acts ? qx : px;
+    y[k] = acts ? qy : py;
+    z[k] = acts ? qz : pz;
+    vx[k] = acts ? wx : ux;
+    vy[k] = acts ? wy : uy;
+    vz[k] = acts ? wz : uz;
+  }
+}
 
 template <class Shape>
 class Collider final : public ConstraintModule {
@@ -324,69 +371,24 @@ class Collider final : public ConstraintModule {
   }
 
  private:
-  // The correction (the top of the file) of every node of [start, end) whose
-  // contact was found (phi < reach), in one loop with selects instead of
-  // branches. A node touching but not pressing (depth <= 0, vn >= 0) keeps
-  // its step. resolve_adjoint() differentiates these same lines.
-  void resolve_block(std::size_t start, std::size_t end, const BlockContacts& found,
+  // The correction of the block's nodes (correct_contacts below).
+  void resolve_block(std::size_t start, std::size_t end, BlockContacts& found,
                      const double* node_friction, double h, const StepStart& before,
                      ClothState& after) const {
-    const double reach = spec_.thickness + kTouch;
-    const double thickness = spec_.thickness;
-    const bool own_mu = spec_.friction.has_value(), own_static = spec_.static_friction.has_value();
-    const double fixed_mu = spec_.friction.value_or(0.0);
-    const double fixed_static = spec_.static_friction.value_or(0.0);
-    // Distinct arrays: the step's start is kept apart from where it lands.
-    double* __restrict x = after.x.data();
-    double* __restrict y = after.y.data();
-    double* __restrict z = after.z.data();
-    double* __restrict vx = after.vx.data();
-    double* __restrict vy = after.vy.data();
-    double* __restrict vz = after.vz.data();
-    const double* __restrict bx = before.x;
-    const double* __restrict by = before.y;
-    const double* __restrict bz = before.z;
-    const double* __restrict fx = found.nx;
-    const double* __restrict fy = found.ny;
-    const double* __restrict fz = found.nz;
-    const double* __restrict fphi = found.phi;
-    for (std::size_t k = 0; k < end - start; ++k) {
-      const std::size_t i = start + k;
-      const double nx = fx[k], ny = fy[k], nz = fz[k], phi = fphi[k];
-      const double px = x[i], py = y[i], pz = z[i];
-      const double ux = vx[i], uy = vy[i], uz = vz[i];
-      const double vn = ux * nx + uy * ny + uz * nz;
-      const double tx = ux - vn * nx, ty = uy - vn * ny, tz = uz - vn * nz;
-      const double depth = thickness - phi;
-      // Every operand is computed and then chosen: no branch per node.
-      const bool acts = (phi < reach) & !((depth <= 0.0) & (vn >= 0.0));
-      const double dvn = std::max(-vn, depth / h);
-      const double node_mu = node_friction[i];
-      const double mu_k = own_mu ? fixed_mu : node_mu;
-      const double mu_s = std::max(own_static ? fixed_static : mu_k, mu_k);
-      const double speed = std::sqrt(tx * tx + ty * ty + tz * tz);
-      const double slide = std::max(0.0, 1.0 - mu_k * dvn / speed);
-      const double keep = speed <= mu_s * dvn ? 0.0 : slide;
-      const double sx = px - bx[i], sy = py - by[i], sz = pz - bz[i];
-      const double sn = sx * nx + sy * ny + sz * nz;
-      const double lx = sx - sn * nx, ly = sy - sn * ny, lz = sz - sn * nz;
-      const double push = std::max(depth, 0.0), hold = 1.0 - keep;
-      const double out = std::max(vn, 0.0);
-      const double qx = px + push * nx - hold * lx, qy = py + push * ny - hold * ly,
-                   qz = pz + push * nz - hold * lz;
-      const double wx = out * nx + keep * tx, wy = out * ny + keep * ty, wz = out * nz + keep * tz;
-      x[i] = acts ? qx : px;
-      y[i] = acts ? qy : py;
-      z[i] = acts ? qz : pz;
-      vx[i] = acts ? wx : ux;
-      vy[i] = acts ? wy : uy;
-      vz[i] = acts ? wz : uz;
+    const std::size_t count = end - start;
+    for (std::size_t k = 0; k < count; ++k) {
+      found.mu_k[k] = spec_.friction ? *spec_.friction : node_friction[start + k];
+      found.mu_s[k] = std::max(spec_.static_friction.value_or(found.mu_k[k]), found.mu_k[k]);
     }
+    correct_contacts(count, spec_.thickness, h, found.nx, found.ny, found.nz, found.phi, found.mu_k,
+                     found.mu_s, before.x + start, before.y + start, before.z + start,
+                     after.x.data() + start, after.y.data() + start, after.z.data() + start,
+                     after.vx.data() + start, after.vy.data() + start, after.vz.data() + start);
   }
 
-  // resolve_block() backwards, for one node: dE/d(corrected p, v) in adj at i becomes dE/d(p, v)
+  // correct_contacts() backwards, for one node: dE/d(corrected p, v) in adj at i becomes dE/d(p, v)
   // as the step left them; dE/d(start position) goes to adj_before, dE/d(mu_k)
-  // to *adj_mu. Each line undoes one line of resolve_block() for node i, last first.
+  // to *adj_mu. Each line undoes one line of correct_contacts() for node i, last first.
   void resolve_adjoint(std::size_t i, const Contact& c, const Vec3& p, const Vec3& b, const Vec3& v,
                        double node_friction, double h, ClothState& adj, NodeVectors& adj_before,
                        double* adj_mu) const {
