@@ -305,12 +305,10 @@ class Collider final : public ConstraintModule {
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
     // near the shape, so a collider the cloth is far from costs one pass. In
     // a block with one, the exact contact runs per node (the shape's own
-    // branches), then resolve_block corrects the whole block in one loop of
-    // selects: a cloth lying on a table has thousands of contacts a step, and
-    // branching per node on pressing or not, sticking or sliding cost about a
-    // tenth more (measured on the 128^2 drape). GCC 12 does not vectorise that
-    // loop (nor with -fno-math-errno -fno-trapping-math); hand-written SIMD
-    // would be the next step.
+    // branches), then correct_contacts corrects the whole block in one
+    // vectorised loop of selects: a cloth lying on a table has thousands of
+    // contacts a step, and branching per node on pressing or not, sticking or
+    // sliding was most of the collider's cost (docs/tradeoff.md).
     // Each node is corrected on its own: the team's parts take node ranges.
     for_node_parts(span.threads, n, [&](std::size_t lo, std::size_t hi) {
       BlockContacts found;
