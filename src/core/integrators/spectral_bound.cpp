@@ -115,6 +115,7 @@ double lanczos_top_eigenvalue(const ClothNetwork& net, SpectralScratch& s) {
     }
   }
   const Eigen::Index m = static_cast<Eigen::Index>(s.alpha.size());
+  if (m == 0) return std::numeric_limits<double>::quiet_NaN();
   Eigen::VectorXd diagonal = Eigen::Map<const Eigen::VectorXd>(s.alpha.data(), m);
   Eigen::VectorXd sub(std::max<Eigen::Index>(m - 1, 0));
   for (Eigen::Index i = 0; i + 1 < m; ++i)
@@ -122,7 +123,9 @@ double lanczos_top_eigenvalue(const ClothNetwork& net, SpectralScratch& s) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
   eigen.computeFromTridiagonal(diagonal, sub, Eigen::EigenvaluesOnly);
   if (eigen.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
-  return eigen.eigenvalues().maxCoeff() / (1.0 - kLanczosDelta);
+  // Eigen returns the eigenvalues in increasing order; reading the last one also keeps
+  // GCC 12's AVX-512 maxCoeff reduction (a maybe-uninitialized warning) out of the build.
+  return eigen.eigenvalues()[m - 1] / (1.0 - kLanczosDelta);
 }
 
 }  // namespace
