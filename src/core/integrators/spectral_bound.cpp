@@ -58,6 +58,13 @@ void lanczos_start(const SpectralScratch& s, std::vector<double>& q) {
 
 }  // namespace
 
+double spectral_round_up(double x) {
+  if (!(x > 0.0) || std::isinf(x)) return x;
+  int exponent = 0;
+  const double mantissa = std::frexp(x, &exponent);  // [0.5, 1)
+  return std::ldexp(std::ceil(std::ldexp(mantissa, kSpectralBits)), exponent - kSpectralBits);
+}
+
 int spectral_lanczos_steps(std::size_t n) {
   if (n == 0) return 0;
   // 1.648 sqrt(n) exp(-sqrt(delta) (2k - 1)) <= kLanczosMissChance
@@ -125,7 +132,7 @@ double lanczos_top_eigenvalue(const ClothNetwork& net, SpectralScratch& s) {
   if (eigen.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
   // Eigen returns the eigenvalues in increasing order; reading the last one also keeps
   // GCC 12's AVX-512 maxCoeff reduction (a maybe-uninitialized warning) out of the build.
-  return eigen.eigenvalues()[m - 1] / (1.0 - kLanczosDelta);
+  return spectral_round_up(eigen.eigenvalues()[m - 1] / (1.0 - kLanczosDelta));
 }
 
 }  // namespace
