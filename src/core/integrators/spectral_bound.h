@@ -43,9 +43,9 @@ struct SpectralScratch {
 };
 
 // The estimate rounded up to kSpectralBits significant bits (a step a little
-// smaller, never larger). The Lanczos sums and Eigen's tridiagonal solve give
-// last bits that differ between builds (measured: -O3 against the sanitizers'
-// -O1 on the same AVX-512 CPU, the 0.3 s hanging_fuzzy run to other bits); a
+// smaller, never larger). The unrounded estimate's last bits differ between
+// builds (measured: -O3 against the sanitizers' -O1 on the same AVX-512 CPU,
+// the 0.3 s hanging_fuzzy run to other bits; which sum differs is untraced); a
 // step rounded this coarsely keeps the run's bits a function of the cloth
 // (determinism_test), unless an estimate straddles a rounding edge (about 1 in
 // 2^(52 - kSpectralBits) per estimate).
