@@ -29,203 +29,18 @@
 #include <limits>
 
 #include "core/base/step_threads.h"
+#include "core/modules/collider_shapes.h"
 #include "core/modules/module_factories.h"
 #include "core/network/cloth_network.h"
 
 namespace neurocloth {
 namespace {
 
-using Mat3 = Eigen::Matrix3d;
-
-// Where a point stands against a shape: signed distance (negative inside) and
-// the unit direction to push it out along. The plane through the surface point
-// with this normal supports the (convex) shape, so a node moved within the
-// plane parallel to it does not come closer to the shape.
-struct Contact {
-  double phi;
-  Vec3 normal;
-};
-
-// The per-shape `near(start, end, reach)` is a branch-free test on plain
-// doubles, true whenever a node's step from `start` to `end` may have come
-// within `reach` of the solid: the block scan in Collider::apply calls it for
-// every node and vectorises. `contact(end, start)` is exact and runs only for
-// nodes that pass.
-
-class PlaneShape {
- public:
-  explicit PlaneShape(const PlaneSpec& s)
-      : nx_(s.normal.x()), ny_(s.normal.y()), nz_(s.normal.z()), offset_(s.normal.dot(s.point)) {}
-  bool near(double, double, double, double x, double y, double z, double reach) const {
-    return nx_ * x + ny_ * y + nz_ * z - offset_ < reach;
-  }
-  Contact contact(const Vec3& p, const Vec3&) const {
-    const Vec3 n(nx_, ny_, nz_);
-    return {n.dot(p) - offset_, n};
-  }
-  // d phi / dp and d normal / dp at a contact (learning): a flat face.
-  void jacobian(const Vec3&, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
-    grad_phi = c.normal;
-    dn.setZero();
-  }
-
- private:
-  double nx_, ny_, nz_, offset_;  // the solid is n.p < offset
-};
-
-class BoxShape {
- public:
-  explicit BoxShape(const BoxSpec& s) : c_(s.center), e_(s.half_extents) {}
-  // The step's path may meet the box grown by reach: the bounding boxes overlap.
-  bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
-    return overlaps(bx, x, c_.x(), e_.x() + reach) & overlaps(by, y, c_.y(), e_.y() + reach) &
-           overlaps(bz, z, c_.z(), e_.z() + reach);
-  }
-  Contact contact(const Vec3& p, const Vec3& before) const {
-    const Vec3 d = p - c_, b = before - c_;
-    const Vec3 q = d.cwiseAbs() - e_;  // per axis: how far outside that pair of faces
-    if (q.maxCoeff() > 0.0) {
-      // A fast node may cross the whole box in one step (a thin table top):
-      // it goes back to the face it came in through.
-      int axis;
-      if (may_cross(b, d) && entered(b, d, axis)) return face(axis, b[axis] > 0.0 ? 1.0 : -1.0, d);
-      // Outside one pair of faces only (a node resting on the top): that face
-      // is the nearest point, no square root needed. The common case.
-      const int outside = (q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0);
-      if (outside == 1) {
-        q.maxCoeff(&axis);
-        return face(axis, d[axis] > 0.0 ? 1.0 : -1.0, d);
-      }
-      const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
-      const double dist = out.norm();
-      return {dist, out / dist};  // away from the nearest point of the box
-    }
-    // Inside. Leave through a face whose outer side held the node at the step's
-    // start (it came in through one of those), the least deep of them; only a
-    // node that started inside too takes the nearest face. Choosing by depth
-    // alone would let a fast node that came in through the top leave by a side.
-    int axis = -1;
-    double side = 1.0, depth = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k) {
-      if (!(std::abs(b[k]) > e_[k])) continue;  // started between these two faces
-      const double s = b[k] > 0.0 ? 1.0 : -1.0;
-      if (e_[k] - s * d[k] < depth) {
-        axis = k;
-        side = s;
-        depth = e_[k] - s * d[k];
-      }
-    }
-    if (axis < 0) {
-      q.maxCoeff(&axis);
-      side = d[axis] >= 0.0 ? 1.0 : -1.0;
-    }
-    return face(axis, side, d);
-  }
-  // A face has a constant normal; near an edge or a corner the normal turns
-  // with the node (the same cases as contact()).
-  void jacobian(const Vec3& p, const Vec3& before, const Contact& c, Vec3& grad_phi,
-                Mat3& dn) const {
-    grad_phi = c.normal;
-    dn.setZero();
-    const Vec3 d = p - c_, b = before - c_;
-    const Vec3 q = d.cwiseAbs() - e_;
-    int axis;
-    if (!(q.maxCoeff() > 0.0) || (may_cross(b, d) && entered(b, d, axis))) return;
-    if ((q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0) == 1) return;
-    const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
-    Mat3 mask = Mat3::Zero();
-    for (int k = 0; k < 3; ++k)
-      mask(k, k) = q[k] > 0.0 ? 1.0 : 0.0;
-    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * mask / out.norm();
-  }
-
- private:
-  // False when the step from b to d (relative to the centre) stays beyond one
-  // face (both ends outside the same face): then it cannot have crossed the box.
-  bool may_cross(const Vec3& b, const Vec3& d) const {
-    for (int k = 0; k < 3; ++k)
-      if ((b[k] > e_[k] && d[k] > e_[k]) || (b[k] < -e_[k] && d[k] < -e_[k])) return false;
-    return true;
-  }
-  static bool overlaps(double a, double b, double center, double half) {
-    return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
-  }
-  // The face `side` (+1 or -1) of `axis`, seen from d (relative to the centre).
-  Contact face(int axis, double side, const Vec3& d) const {
-    Vec3 n = Vec3::Zero();
-    n[axis] = side;
-    return {side * d[axis] - e_[axis], n};
-  }
-  // Whether the segment b-d (relative to the centre) starts outside and passes
-  // through the box's inside; `axis` is the one whose face it enters by.
-  bool entered(const Vec3& b, const Vec3& d, int& axis) const {
-    double t_in = 0.0, t_out = 1.0;
-    axis = -1;
-    for (int k = 0; k < 3; ++k) {
-      const double delta = d[k] - b[k];
-      if (delta == 0.0) {
-        if (!(std::abs(b[k]) < e_[k])) return false;
-        continue;
-      }
-      const double t0 = (-e_[k] - b[k]) / delta, t1 = (e_[k] - b[k]) / delta;
-      if (std::min(t0, t1) > t_in) {
-        t_in = std::min(t0, t1);
-        axis = k;
-      }
-      t_out = std::min(t_out, std::max(t0, t1));
-    }
-    return axis >= 0 && t_in < t_out;
-  }
-
-  Vec3 c_, e_;
-};
-
-// Points within `radius` of the segment a-b; a sphere is the segment a == b.
-class CapsuleShape {
- public:
-  CapsuleShape(const Vec3& a, const Vec3& b, double radius)
-      : a_(a),
-        ab_(b - a),
-        inv_len2_(ab_.squaredNorm() > 0 ? 1.0 / ab_.squaredNorm() : 0.0),
-        r_(radius) {}
-  bool near(double, double, double, double x, double y, double z, double reach) const {
-    const double px = x - a_.x(), py = y - a_.y(), pz = z - a_.z();
-    double t = (px * ab_.x() + py * ab_.y() + pz * ab_.z()) * inv_len2_;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    const double dx = px - t * ab_.x(), dy = py - t * ab_.y(), dz = pz - t * ab_.z();
-    const double r = r_ + reach;
-    return dx * dx + dy * dy + dz * dz < r * r;
-  }
-  Contact contact(const Vec3& p, const Vec3&) const {
-    const Vec3 ap = p - a_;
-    const double t = std::clamp(ap.dot(ab_) * inv_len2_, 0.0, 1.0);
-    const Vec3 d = ap - t * ab_;
-    const double dist = d.norm();
-    // On the axis itself every direction is as near: push up, a fixed choice.
-    if (!(dist > 0.0)) return {-r_, Vec3::UnitY()};
-    return {dist - r_, d / dist};
-  }
-  // The normal turns with the node around the axis (and everywhere near an end).
-  void jacobian(const Vec3& p, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
-    const Vec3 ap = p - a_;
-    const double t = ap.dot(ab_) * inv_len2_;
-    const Vec3 d = ap - std::clamp(t, 0.0, 1.0) * ab_;
-    const double dist = d.norm();
-    if (!(dist > 0.0)) {
-      grad_phi.setZero();
-      dn.setZero();
-      return;
-    }
-    Mat3 along = Mat3::Identity();  // d d / dp
-    if (t > 0.0 && t < 1.0) along -= ab_ * ab_.transpose() * inv_len2_;
-    grad_phi = along * c.normal;
-    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * along / dist;
-  }
-
- private:
-  Vec3 a_, ab_;
-  double inv_len2_, r_;
-};
+using collider_shapes::BoxShape;
+using collider_shapes::CapsuleShape;
+using collider_shapes::Contact;
+using collider_shapes::Mat3;
+using collider_shapes::PlaneShape;
 
 // A node this close outside the thickness and moving in touches the surface
 // already. Explicit Euler moves a node with the velocity it had: one resting
@@ -302,6 +117,7 @@ class Collider final : public ConstraintModule {
     const double reach = spec_.thickness + kTouch;
     const double *bx = before.x, *by = before.y, *bz = before.z;
     const double *x = after.x.data(), *y = after.y.data(), *z = after.z.data();
+    const double* free = net.masses.free.data();
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
     // near the shape, so a collider the cloth is far from costs one pass. In
     // a block with one, the exact contact runs per node (the shape's own
@@ -318,13 +134,28 @@ class Collider final : public ConstraintModule {
         for (std::size_t i = start; i < end; ++i)
           hits += shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
         if (hits == 0) continue;
+        // Every node's contact by the shape's branch-free case where it
+        // applies (vectorised); the rest, flagged, by the exact contact().
+        bool exact[kContactBlock];
+        int exact_count = 0;
         for (std::size_t i = start; i < end; ++i) {
           const std::size_t k = i - start;
-          found.phi[k] = std::numeric_limits<double>::infinity();
-          found.nx[k] = found.ny[k] = found.nz[k] = 0.0;
-          if (net.masses.free[i] == 0.0 ||
-              !shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach))
-            continue;
+          const bool is_near =
+              (free[i] != 0.0) & shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
+          double phi = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+          const bool simple =
+              shape_.face_contact(bx[i], by[i], bz[i], x[i], y[i], z[i], phi, nx, ny, nz);
+          const bool take = is_near & simple & (phi < reach);
+          found.phi[k] = take ? phi : std::numeric_limits<double>::infinity();
+          found.nx[k] = take ? nx : 0.0;
+          found.ny[k] = take ? ny : 0.0;
+          found.nz[k] = take ? nz : 0.0;
+          exact[k] = is_near & !simple;
+          exact_count += exact[k];
+        }
+        for (std::size_t k = 0; exact_count > 0 && k < end - start; ++k) {
+          if (!exact[k]) continue;
+          const std::size_t i = start + k;
           const Contact c = shape_.contact(after.position(i), before.position(i));
           if (!(c.phi < reach)) continue;
           found.phi[k] = c.phi;

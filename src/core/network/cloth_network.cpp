@@ -344,25 +344,42 @@ void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {
 
 double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) const {
   // The largest squared norm, its root taken once: the root is monotone and
-  // correctly rounded, so this is the largest norm, bit for bit. Branch-free,
-  // so the scan vectorises; a NaN anywhere is kept aside, never lost in a max.
+  // correctly rounded, so this is the largest norm, bit for bit. Kept in lanes
+  // of eight, which GCC turns into vector compares and blends (a scalar running
+  // max with a NaN flag does not vectorise); the max is exact in any order, so
+  // the lanes change no bit. A NaN anywhere is kept aside, never lost in a max.
   const double *const fx = F.x.data(), *const fy = F.y.data(), *const fz = F.z.data();
   const double *const w = masses.inverse_mass.data(), *const free = masses.free.data();
   const double gx = gravity.x(), gy = gravity.y(), gz = gravity.z();
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const auto norm2 = [&](std::size_t i) {
+    const double m = 1.0 / w[i];  // pinned: inf, masked below
+    const double x = fx[i] + m * gx, y = fy[i] + m * gy, z = fz[i] + m * gz;
+    return free[i] == 0.0 ? 0.0 : x * x + y * y + z * z;
+  };
   const double m2 = reduce_node_parts<double>(
       threads, node_count(),
       [&](std::size_t lo, std::size_t hi) {
-        double worst = 0.0;
-        bool nan = false;
-        for (std::size_t i = lo; i < hi; ++i) {
-          const double m = 1.0 / w[i];  // pinned: inf, masked below
-          const double x = fx[i] + m * gx, y = fy[i] + m * gy, z = fz[i] + m * gz;
-          const double n2 = free[i] == 0.0 ? 0.0 : x * x + y * y + z * z;
-          nan |= n2 != n2;
-          worst = n2 > worst ? n2 : worst;
+        constexpr std::size_t kLanes = 8;
+        double worst[kLanes] = {}, nan[kLanes] = {};
+        std::size_t i = lo;
+        for (; i + kLanes <= hi; i += kLanes)
+          for (std::size_t j = 0; j < kLanes; ++j) {
+            const double n2 = norm2(i + j);
+            nan[j] = n2 != n2 ? 1.0 : nan[j];
+            worst[j] = n2 > worst[j] ? n2 : worst[j];
+          }
+        for (; i < hi; ++i) {
+          const double n2 = norm2(i);
+          nan[0] = n2 != n2 ? 1.0 : nan[0];
+          worst[0] = n2 > worst[0] ? n2 : worst[0];
         }
-        return nan ? kNaN : worst;
+        double top = 0.0;
+        for (std::size_t j = 0; j < kLanes; ++j) {
+          if (nan[j] != 0.0) return kNaN;
+          top = std::max(top, worst[j]);
+        }
+        return top;
       },
       [&](double a, double b) { return a != a || b != b ? kNaN : std::max(a, b); });
   return std::sqrt(m2);

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "core/modules/collider_shapes.h"
 #include "core/modules/module_factories.h"
 #include "core/scene/scene.h"
 #include "support/scene_builder.h"
@@ -320,6 +322,56 @@ Simulation fast_node(const Vec3& p, const Vec3& v, const Json& collider,
 }
 
 const Json kTable = {{"type", "box"}, {"center", {0, 0.375, 0}}, {"size", {0.8, 0.75, 0.8}}};
+
+// The box's branch-free case (the block scan's) gives contact()'s bits where
+// it claims a node, and claims the nodes resting on a face, not those whose
+// step may have crossed the box or that sit off an edge or a corner.
+TEST(ColliderBox, TheBranchFreeFaceContactIsTheExactOne) {
+  BoxSpec spec;
+  spec.center = Vec3(0.1, 0.375, -0.05);
+  spec.half_extents = Vec3(0.4, 0.375, 0.3);
+  const collider_shapes::BoxShape box(spec);
+  std::mt19937_64 rng(27);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int claimed = 0, checked = 0;
+  for (int n = 0; n < 200000; ++n) {
+    // Ends anywhere within 1.5 half extents of the centre (inside, on faces,
+    // off edges and corners); starts a small step away, or anywhere (a fast
+    // node that may have crossed the box).
+    Vec3 end, start;
+    for (int k = 0; k < 3; ++k)
+      end[k] = spec.center[k] + 1.5 * spec.half_extents[k] * u(rng);
+    const double reach = n % 4 == 0 ? 1.0 : 0.02;
+    for (int k = 0; k < 3; ++k)
+      start[k] = end[k] + reach * u(rng);
+    double phi = 0, nx = 0, ny = 0, nz = 0;
+    const bool simple = box.face_contact(start.x(), start.y(), start.z(), end.x(), end.y(), end.z(),
+                                         phi, nx, ny, nz);
+    const collider_shapes::Contact c = box.contact(end, start);
+    ++checked;
+    if (!simple) continue;
+    ++claimed;
+    ASSERT_EQ(phi, c.phi) << n;
+    ASSERT_EQ(nx, c.normal.x()) << n;
+    ASSERT_EQ(ny, c.normal.y()) << n;
+    ASSERT_EQ(nz, c.normal.z()) << n;
+    ASSERT_GT(phi, 0.0) << n;  // only ever outside, on one face
+  }
+  EXPECT_GT(claimed, checked / 10);  // a face's common case is claimed
+  double phi = 0, nx = 0, ny = 0, nz = 0;
+  const Vec3 top = spec.center + Vec3(0, spec.half_extents.y() + 0.001, 0);
+  EXPECT_TRUE(box.face_contact(top.x(), top.y() + 0.01, top.z(), top.x(), top.y(), top.z(), phi, nx,
+                               ny, nz));
+  EXPECT_EQ(ny, 1.0);
+  // Landed under the top from above it: left to contact(), which sends it back up.
+  const Vec3 under = spec.center - Vec3(0, spec.half_extents.y() + 0.001, 0);
+  EXPECT_FALSE(box.face_contact(top.x(), top.y(), top.z(), under.x(), under.y(), under.z(), phi, nx,
+                                ny, nz));
+  // Off an edge (outside two pairs of faces): contact() measures to the edge.
+  const Vec3 edge = spec.center + spec.half_extents + Vec3(0.01, 0.01, -0.1);
+  EXPECT_FALSE(box.face_contact(edge.x(), edge.y(), edge.z(), edge.x(), edge.y(), edge.z(), phi, nx,
+                                ny, nz));
+}
 
 // Falling at 10 m/s the node is 0.4 m deep after one step, deeper below the top
 // than inside the nearest side: it must still come out on top.

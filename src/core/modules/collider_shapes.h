@@ -1,0 +1,238 @@
+#pragma once
+// The solid shapes the colliders (colliders.cpp) push nodes out of: plane, box,
+// and capsule (a sphere is a capsule of length 0). Each answers three
+// questions about one node's step from `start` to `end`:
+//  - near(start, end, reach): branch-free on plain doubles, true whenever the
+//    step may have come within `reach` of the solid; the block scan calls it
+//    for every node and vectorises;
+//  - face_contact(start, end, ...): branch-free too, the contact where it is
+//    simple (a node resting on a box's face), bit for bit what contact() gives;
+//    false where contact() must decide;
+//  - contact(end, start): exact, run only for the nodes the others leave;
+// and jacobian() gives what learning needs of a contact.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/modules/module_specs.h"
+
+namespace neurocloth::collider_shapes {
+
+using Mat3 = Eigen::Matrix3d;
+
+// Where a point stands against a shape: signed distance (negative inside) and
+// the unit direction to push it out along. The plane through the surface point
+// with this normal supports the (convex) shape, so a node moved within the
+// plane parallel to it does not come closer to the shape.
+struct Contact {
+  double phi;
+  Vec3 normal;
+};
+
+class PlaneShape {
+ public:
+  explicit PlaneShape(const PlaneSpec& s)
+      : nx_(s.normal.x()), ny_(s.normal.y()), nz_(s.normal.z()), offset_(s.normal.dot(s.point)) {}
+  bool near(double, double, double, double x, double y, double z, double reach) const {
+    return nx_ * x + ny_ * y + nz_ * z - offset_ < reach;
+  }
+  bool face_contact(double, double, double, double, double, double, double&, double&, double&,
+                    double&) const {
+    return false;  // contact() is already one dot product
+  }
+  Contact contact(const Vec3& p, const Vec3&) const {
+    const Vec3 n(nx_, ny_, nz_);
+    return {n.dot(p) - offset_, n};
+  }
+  // d phi / dp and d normal / dp at a contact (learning): a flat face.
+  void jacobian(const Vec3&, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
+    grad_phi = c.normal;
+    dn.setZero();
+  }
+
+ private:
+  double nx_, ny_, nz_, offset_;  // the solid is n.p < offset
+};
+
+class BoxShape {
+ public:
+  explicit BoxShape(const BoxSpec& s) : c_(s.center), e_(s.half_extents) {}
+  // The step's path may meet the box grown by reach: the bounding boxes overlap.
+  bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
+    return overlaps(bx, x, c_.x(), e_.x() + reach) & overlaps(by, y, c_.y(), e_.y() + reach) &
+           overlaps(bz, z, c_.z(), e_.z() + reach);
+  }
+  // contact()'s common case without its branches, for the block scan: a node
+  // outside exactly one pair of faces whose step started beyond that same face
+  // (so it cannot have crossed the box) is nearest to that face: a cloth lying
+  // on a table top. The same bits as contact(); false where contact() decides.
+  bool face_contact(double bx, double by, double bz, double x, double y, double z, double& phi,
+                    double& nx, double& ny, double& nz) const {
+    const double dx = x - c_.x(), dy = y - c_.y(), dz = z - c_.z();
+    const double ex = e_.x(), ey = e_.y(), ez = e_.z();
+    const double qx = std::abs(dx) - ex, qy = std::abs(dy) - ey, qz = std::abs(dz) - ez;
+    const bool ox = qx > 0.0, oy = qy > 0.0, oz = qz > 0.0;
+    const double sx = dx > 0.0 ? 1.0 : -1.0, sy = dy > 0.0 ? 1.0 : -1.0, sz = dz > 0.0 ? 1.0 : -1.0;
+    // The start beyond the same face: on the same side, past the face.
+    const bool kx = sx * (bx - c_.x()) > ex, ky = sy * (by - c_.y()) > ey,
+               kz = sz * (bz - c_.z()) > ez;
+    const bool only_x = ox & !oy & !oz & kx, only_y = !ox & oy & !oz & ky,
+               only_z = !ox & !oy & oz & kz;
+    phi = only_x ? qx : (only_y ? qy : qz);
+    nx = only_x ? sx : 0.0;
+    ny = only_y ? sy : 0.0;
+    nz = only_z ? sz : 0.0;
+    return only_x | only_y | only_z;
+  }
+  Contact contact(const Vec3& p, const Vec3& before) const {
+    const Vec3 d = p - c_, b = before - c_;
+    const Vec3 q = d.cwiseAbs() - e_;  // per axis: how far outside that pair of faces
+    if (q.maxCoeff() > 0.0) {
+      // A fast node may cross the whole box in one step (a thin table top):
+      // it goes back to the face it came in through.
+      int axis;
+      if (may_cross(b, d) && entered(b, d, axis)) return face(axis, b[axis] > 0.0 ? 1.0 : -1.0, d);
+      // Outside one pair of faces only (a node resting on the top): that face
+      // is the nearest point, no square root needed. The common case.
+      const int outside = (q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0);
+      if (outside == 1) {
+        q.maxCoeff(&axis);
+        return face(axis, d[axis] > 0.0 ? 1.0 : -1.0, d);
+      }
+      const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
+      const double dist = out.norm();
+      return {dist, out / dist};  // away from the nearest point of the box
+    }
+    // Inside. Leave through a face whose outer side held the node at the step's
+    // start (it came in through one of those), the least deep of them; only a
+    // node that started inside too takes the nearest face. Choosing by depth
+    // alone would let a fast node that came in through the top leave by a side.
+    int axis = -1;
+    double side = 1.0, depth = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (!(std::abs(b[k]) > e_[k])) continue;  // started between these two faces
+      const double s = b[k] > 0.0 ? 1.0 : -1.0;
+      if (e_[k] - s * d[k] < depth) {
+        axis = k;
+        side = s;
+        depth = e_[k] - s * d[k];
+      }
+    }
+    if (axis < 0) {
+      q.maxCoeff(&axis);
+      side = d[axis] >= 0.0 ? 1.0 : -1.0;
+    }
+    return face(axis, side, d);
+  }
+  // A face has a constant normal; near an edge or a corner the normal turns
+  // with the node (the same cases as contact()).
+  void jacobian(const Vec3& p, const Vec3& before, const Contact& c, Vec3& grad_phi,
+                Mat3& dn) const {
+    grad_phi = c.normal;
+    dn.setZero();
+    const Vec3 d = p - c_, b = before - c_;
+    const Vec3 q = d.cwiseAbs() - e_;
+    int axis;
+    if (!(q.maxCoeff() > 0.0) || (may_cross(b, d) && entered(b, d, axis))) return;
+    if ((q.x() > 0.0) + (q.y() > 0.0) + (q.z() > 0.0) == 1) return;
+    const Vec3 out = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
+    Mat3 mask = Mat3::Zero();
+    for (int k = 0; k < 3; ++k)
+      mask(k, k) = q[k] > 0.0 ? 1.0 : 0.0;
+    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * mask / out.norm();
+  }
+
+ private:
+  // False when the step from b to d (relative to the centre) stays beyond one
+  // face (both ends outside the same face): then it cannot have crossed the box.
+  bool may_cross(const Vec3& b, const Vec3& d) const {
+    for (int k = 0; k < 3; ++k)
+      if ((b[k] > e_[k] && d[k] > e_[k]) || (b[k] < -e_[k] && d[k] < -e_[k])) return false;
+    return true;
+  }
+  static bool overlaps(double a, double b, double center, double half) {
+    return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
+  }
+  // The face `side` (+1 or -1) of `axis`, seen from d (relative to the centre).
+  Contact face(int axis, double side, const Vec3& d) const {
+    Vec3 n = Vec3::Zero();
+    n[axis] = side;
+    return {side * d[axis] - e_[axis], n};
+  }
+  // Whether the segment b-d (relative to the centre) starts outside and passes
+  // through the box's inside; `axis` is the one whose face it enters by.
+  bool entered(const Vec3& b, const Vec3& d, int& axis) const {
+    double t_in = 0.0, t_out = 1.0;
+    axis = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double delta = d[k] - b[k];
+      if (delta == 0.0) {
+        if (!(std::abs(b[k]) < e_[k])) return false;
+        continue;
+      }
+      const double t0 = (-e_[k] - b[k]) / delta, t1 = (e_[k] - b[k]) / delta;
+      if (std::min(t0, t1) > t_in) {
+        t_in = std::min(t0, t1);
+        axis = k;
+      }
+      t_out = std::min(t_out, std::max(t0, t1));
+    }
+    return axis >= 0 && t_in < t_out;
+  }
+
+  Vec3 c_, e_;
+};
+
+// Points within `radius` of the segment a-b; a sphere is the segment a == b.
+class CapsuleShape {
+ public:
+  CapsuleShape(const Vec3& a, const Vec3& b, double radius)
+      : a_(a),
+        ab_(b - a),
+        inv_len2_(ab_.squaredNorm() > 0 ? 1.0 / ab_.squaredNorm() : 0.0),
+        r_(radius) {}
+  bool near(double, double, double, double x, double y, double z, double reach) const {
+    const double px = x - a_.x(), py = y - a_.y(), pz = z - a_.z();
+    double t = (px * ab_.x() + py * ab_.y() + pz * ab_.z()) * inv_len2_;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    const double dx = px - t * ab_.x(), dy = py - t * ab_.y(), dz = pz - t * ab_.z();
+    const double r = r_ + reach;
+    return dx * dx + dy * dy + dz * dz < r * r;
+  }
+  bool face_contact(double, double, double, double, double, double, double&, double&, double&,
+                    double&) const {
+    return false;
+  }
+  Contact contact(const Vec3& p, const Vec3&) const {
+    const Vec3 ap = p - a_;
+    const double t = std::clamp(ap.dot(ab_) * inv_len2_, 0.0, 1.0);
+    const Vec3 d = ap - t * ab_;
+    const double dist = d.norm();
+    // On the axis itself every direction is as near: push up, a fixed choice.
+    if (!(dist > 0.0)) return {-r_, Vec3::UnitY()};
+    return {dist - r_, d / dist};
+  }
+  // The normal turns with the node around the axis (and everywhere near an end).
+  void jacobian(const Vec3& p, const Vec3&, const Contact& c, Vec3& grad_phi, Mat3& dn) const {
+    const Vec3 ap = p - a_;
+    const double t = ap.dot(ab_) * inv_len2_;
+    const Vec3 d = ap - std::clamp(t, 0.0, 1.0) * ab_;
+    const double dist = d.norm();
+    if (!(dist > 0.0)) {
+      grad_phi.setZero();
+      dn.setZero();
+      return;
+    }
+    Mat3 along = Mat3::Identity();  // d d / dp
+    if (t > 0.0 && t < 1.0) along -= ab_ * ab_.transpose() * inv_len2_;
+    grad_phi = along * c.normal;
+    dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * along / dist;
+  }
+
+ private:
+  Vec3 a_, ab_;
+  double inv_len2_, r_;
+};
+
+}  // namespace neurocloth::collider_shapes
