@@ -72,14 +72,18 @@ class BoxShape {
     const double dx = x - c_.x(), dy = y - c_.y(), dz = z - c_.z();
     const double ex = e_.x(), ey = e_.y(), ez = e_.z();
     const double qx = std::abs(dx) - ex, qy = std::abs(dy) - ey, qz = std::abs(dz) - ez;
-    const bool ox = qx > 0.0, oy = qy > 0.0, oz = qz > 0.0;
     const double sx = dx > 0.0 ? 1.0 : -1.0, sy = dy > 0.0 ? 1.0 : -1.0, sz = dz > 0.0 ? 1.0 : -1.0;
-    // The start beyond the same face: on the same side, past the face.
-    const bool kx = sx * (bx - c_.x()) > ex, ky = sy * (by - c_.y()) > ey,
-               kz = sz * (bz - c_.z()) > ez;
-    const bool only_x = ox & !oy & !oz & kx, only_y = !ox & oy & !oz & ky,
-               only_z = !ox & !oy & oz & kz;
-    phi = only_x ? qx : (only_y ? qy : qz);
+    // Outside that pair of faces, and the start beyond the same face (same
+    // side, past it). Counted in integers, which keeps the loop free of branches.
+    const int ox = qx > 0.0, oy = qy > 0.0, oz = qz > 0.0;
+    const int kx = sx * (bx - c_.x()) > ex, ky = sy * (by - c_.y()) > ey,
+              kz = sz * (bz - c_.z()) > ez;
+    const int outside = ox + oy + oz;
+    const bool only_x = (outside == 1) & (ox + kx == 2), only_y = (outside == 1) & (oy + ky == 2),
+               only_z = (outside == 1) & (oz + kz == 2);
+    phi = qz;
+    phi = only_y ? qy : phi;
+    phi = only_x ? qx : phi;
     nx = only_x ? sx : 0.0;
     ny = only_y ? sy : 0.0;
     nz = only_z ? sz : 0.0;

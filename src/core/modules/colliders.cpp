@@ -103,6 +103,38 @@ void correct_contacts(std::size_t count, double thickness, double h, const doubl
   }
 }
 
+// The block's contacts where the shape's branch-free case applies (phi and
+// normal in `found`, infinity and 0 where none acts) and a flag in `exact` for
+// the free nodes near the shape that contact() must decide. Plain arrays said
+// distinct (restrict) and flags as doubles, so the loop vectorises. Returns
+// whether any node was flagged.
+template <class Shape>
+bool face_contacts(const Shape& shape, std::size_t count, double reach, const double* __restrict bx,
+                   const double* __restrict by, const double* __restrict bz,
+                   const double* __restrict x, const double* __restrict y,
+                   const double* __restrict z, const double* __restrict free, BlockContacts& found,
+                   double* __restrict exact) {
+  double* __restrict fphi = found.phi;
+  double* __restrict fx = found.nx;
+  double* __restrict fy = found.ny;
+  double* __restrict fz = found.nz;
+  long flagged = 0;  // an integer sum: a sum of doubles would not vectorise (its order)
+  for (std::size_t k = 0; k < count; ++k) {
+    const bool is_near =
+        (free[k] != 0.0) & shape.near(bx[k], by[k], bz[k], x[k], y[k], z[k], reach);
+    double phi = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+    const bool simple = shape.face_contact(bx[k], by[k], bz[k], x[k], y[k], z[k], phi, nx, ny, nz);
+    const bool take = is_near & simple & (phi < reach);
+    fphi[k] = take ? phi : std::numeric_limits<double>::infinity();
+    fx[k] = take ? nx : 0.0;
+    fy[k] = take ? ny : 0.0;
+    fz[k] = take ? nz : 0.0;
+    exact[k] = is_near & !simple ? 1.0 : 0.0;
+    flagged += is_near & !simple;
+  }
+  return flagged > 0;
+}
+
 template <class Shape>
 class Collider final : public ConstraintModule {
  public:
@@ -136,25 +168,12 @@ class Collider final : public ConstraintModule {
         if (hits == 0) continue;
         // Every node's contact by the shape's branch-free case where it
         // applies (vectorised); the rest, flagged, by the exact contact().
-        bool exact[kContactBlock];
-        int exact_count = 0;
-        for (std::size_t i = start; i < end; ++i) {
-          const std::size_t k = i - start;
-          const bool is_near =
-              (free[i] != 0.0) & shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
-          double phi = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
-          const bool simple =
-              shape_.face_contact(bx[i], by[i], bz[i], x[i], y[i], z[i], phi, nx, ny, nz);
-          const bool take = is_near & simple & (phi < reach);
-          found.phi[k] = take ? phi : std::numeric_limits<double>::infinity();
-          found.nx[k] = take ? nx : 0.0;
-          found.ny[k] = take ? ny : 0.0;
-          found.nz[k] = take ? nz : 0.0;
-          exact[k] = is_near & !simple;
-          exact_count += exact[k];
-        }
-        for (std::size_t k = 0; exact_count > 0 && k < end - start; ++k) {
-          if (!exact[k]) continue;
+        double exact[kContactBlock];
+        const bool any_exact =
+            face_contacts(shape_, end - start, reach, bx + start, by + start, bz + start, x + start,
+                          y + start, z + start, free + start, found, exact);
+        for (std::size_t k = 0; any_exact && k < end - start; ++k) {
+          if (exact[k] == 0.0) continue;
           const std::size_t i = start + k;
           const Contact c = shape_.contact(after.position(i), before.position(i));
           if (!(c.phi < reach)) continue;
