@@ -70,6 +70,12 @@ int main(int argc, char** argv) {
                        "What caps the explicit steps: spectral (the default: the largest "
                        "eigenvalues by Lanczos) or gershgorin (per-node discs, smaller steps; "
                        "docs/stability.md)");
+  simulate
+      ->add_option("--safety", sim.safety,
+                   "The adaptive step's cap as a fraction of the stability bound, in (0, 1] "
+                   "(the scene's solver.safety, default 0.5; 1 halves the steps of a cloth "
+                   "whose cap is reached; docs/stability.md)")
+      ->excludes(accuracy);
   simulate->add_option("--size", sim.size,
                        "Run the scene's cloth resized to N x N, keeping its width and mass (as the "
                        "window's --size)");

@@ -55,6 +55,9 @@ struct SimulateOptions {
   std::optional<std::string> damping;
   // --step-bound spectral|gershgorin: the scene's solver.step_bound, overridden.
   std::optional<std::string> step_bound;
+  // --safety S: the scene's solver.safety (the adaptive cap as a fraction of
+  // the stability bound), overridden.
+  std::optional<double> safety;
   std::optional<int> size;  // --size N: sized_scene
 };
 int run_simulate(const SimulateOptions& options);

@@ -32,6 +32,7 @@ nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& num
   doc["damping"] = to_string(s.damping);
   doc["step_bound"] = to_string(s.step_bound);
   doc["adaptive"] = s.adaptive;
+  doc["safety"] = s.adaptive_settings.safety;
   doc["dt"] = s.dt;
   doc["time"] = sim.time();
   doc["steps"] = sim.steps();

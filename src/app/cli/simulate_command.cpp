@@ -158,6 +158,11 @@ int run_simulate(const SimulateOptions& o) {
     throw InputError(
         "command line", "--step-bound",
         "unknown step bound '" + *o.step_bound + "' (expected one of: " + kStepBoundNames + ")");
+  if (o.safety) {
+    if (!(*o.safety > 0 && *o.safety <= 1))
+      throw InputError("command line", "--safety", "must be in (0, 1]");
+    scene.solver.adaptive_settings.safety = *o.safety;
+  }
   if (scene.solver.damping == DampingMode::implicit_springwise &&
       scene.solver.integrator != IntegratorKind::network)
     throw InputError("command line", o.damping ? "--damping" : "--integrator",
