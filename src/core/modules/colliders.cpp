@@ -137,7 +137,7 @@ BlockScan face_contacts(const Shape& shape, std::size_t count, double reach,
     fx[k] = take ? nx : 0.0;
     fy[k] = take ? ny : 0.0;
     fz[k] = take ? nz : 0.0;
-    exact[k] = is_near & !simple ? 1.0 : 0.0;
+    exact[k] = (is_near & !simple) ? 1.0 : 0.0;
     near += is_near;
     flagged += is_near & !simple;
   }
