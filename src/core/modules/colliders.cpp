@@ -103,30 +103,22 @@ void correct_contacts(std::size_t count, double thickness, double h, const doubl
   }
 }
 
-// How many of a block's nodes are near the shape, and how many of those
-// contact() must decide.
-struct BlockScan {
-  long near = 0, exact = 0;
-};
-
 // The block's contacts where the shape's branch-free case applies (phi and
 // normal in `found`, infinity and 0 where none acts) and a flag in `exact` for
 // the free nodes near the shape that contact() must decide. Plain arrays said
-// distinct (restrict), flags as doubles and counts in integers (a sum of
-// doubles keeps its order, which would stop the vectoriser), so the loop
-// vectorises: a block far from the shape costs this one pass.
+// distinct (restrict) and flags as doubles, so the loop vectorises. Returns
+// whether any node was flagged.
 template <class Shape>
-BlockScan face_contacts(const Shape& shape, std::size_t count, double reach,
-                        const double* __restrict bx, const double* __restrict by,
-                        const double* __restrict bz, const double* __restrict x,
-                        const double* __restrict y, const double* __restrict z,
-                        const double* __restrict free, BlockContacts& found,
-                        double* __restrict exact) {
+bool face_contacts(const Shape& shape, std::size_t count, double reach, const double* __restrict bx,
+                   const double* __restrict by, const double* __restrict bz,
+                   const double* __restrict x, const double* __restrict y,
+                   const double* __restrict z, const double* __restrict free, BlockContacts& found,
+                   double* __restrict exact) {
   double* __restrict fphi = found.phi;
   double* __restrict fx = found.nx;
   double* __restrict fy = found.ny;
   double* __restrict fz = found.nz;
-  long near = 0, flagged = 0;
+  long flagged = 0;  // an integer sum: a sum of doubles would not vectorise (its order)
   for (std::size_t k = 0; k < count; ++k) {
     const bool is_near =
         (free[k] != 0.0) & shape.near(bx[k], by[k], bz[k], x[k], y[k], z[k], reach);
@@ -138,10 +130,9 @@ BlockScan face_contacts(const Shape& shape, std::size_t count, double reach,
     fy[k] = take ? ny : 0.0;
     fz[k] = take ? nz : 0.0;
     exact[k] = (is_near & !simple) ? 1.0 : 0.0;
-    near += is_near;
     flagged += is_near & !simple;
   }
-  return {near, flagged};
+  return flagged > 0;
 }
 
 template <class Shape>
@@ -171,14 +162,17 @@ class Collider final : public ConstraintModule {
       BlockContacts found;
       for (std::size_t start = lo; start < hi; start += kContactBlock) {
         const std::size_t end = std::min(hi, start + kContactBlock);
+        int hits = 0;
+        for (std::size_t i = start; i < end; ++i)
+          hits += shape_.near(bx[i], by[i], bz[i], x[i], y[i], z[i], reach);
+        if (hits == 0) continue;
         // Every node's contact by the shape's branch-free case where it
         // applies (vectorised); the rest, flagged, by the exact contact().
         double exact[kContactBlock];
-        const BlockScan scan =
+        const bool any_exact =
             face_contacts(shape_, end - start, reach, bx + start, by + start, bz + start, x + start,
                           y + start, z + start, free + start, found, exact);
-        if (scan.near == 0) continue;
-        for (std::size_t k = 0; scan.exact > 0 && k < end - start; ++k) {
+        for (std::size_t k = 0; any_exact && k < end - start; ++k) {
           if (exact[k] == 0.0) continue;
           const std::size_t i = start + k;
           const Contact c = shape_.contact(after.position(i), before.position(i));

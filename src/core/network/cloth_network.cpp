@@ -342,30 +342,12 @@ void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {
   }
 }
 
-namespace {
-
-// Calls fn(i, lane) for i in [lo, hi), lane = i's place in its group of
-// kLanes: reductions kept per lane (a running max with a NaN flag, a sum) are
-// turned into vector code by GCC, where one accumulator would stay scalar (a
-// sum of doubles keeps its order). The tail goes to lane 0.
-constexpr std::size_t kLanes = 8;
-template <typename Fn>
-void in_lanes(std::size_t lo, std::size_t hi, Fn&& fn) {
-  std::size_t i = lo;
-  for (; i + kLanes <= hi; i += kLanes)
-    for (std::size_t j = 0; j < kLanes; ++j)
-      fn(i + j, j);
-  for (; i < hi; ++i)
-    fn(i, 0);
-}
-
-}  // namespace
-
 double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) const {
   // The largest squared norm, its root taken once: the root is monotone and
   // correctly rounded, so this is the largest norm, bit for bit. Kept in lanes
-  // (in_lanes): the max is exact in any order, so the lanes change no bit. A
-  // NaN anywhere is kept aside, never lost in a max.
+  // of eight, which GCC turns into vector compares and blends (a scalar running
+  // max with a NaN flag does not vectorise); the max is exact in any order, so
+  // the lanes change no bit. A NaN anywhere is kept aside, never lost in a max.
   const double *const fx = F.x.data(), *const fy = F.y.data(), *const fz = F.z.data();
   const double *const w = masses.inverse_mass.data(), *const free = masses.free.data();
   const double gx = gravity.x(), gy = gravity.y(), gz = gravity.z();
@@ -378,12 +360,20 @@ double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) c
   const double m2 = reduce_node_parts<double>(
       threads, node_count(),
       [&](std::size_t lo, std::size_t hi) {
+        constexpr std::size_t kLanes = 8;
         double worst[kLanes] = {}, nan[kLanes] = {};
-        in_lanes(lo, hi, [&](std::size_t i, std::size_t j) {
+        std::size_t i = lo;
+        for (; i + kLanes <= hi; i += kLanes)
+          for (std::size_t j = 0; j < kLanes; ++j) {
+            const double n2 = norm2(i + j);
+            nan[j] = n2 != n2 ? 1.0 : nan[j];
+            worst[j] = n2 > worst[j] ? n2 : worst[j];
+          }
+        for (; i < hi; ++i) {
           const double n2 = norm2(i);
-          nan[j] = n2 != n2 ? 1.0 : nan[j];
-          worst[j] = n2 > worst[j] ? n2 : worst[j];
-        });
+          nan[0] = n2 != n2 ? 1.0 : nan[0];
+          worst[0] = n2 > worst[0] ? n2 : worst[0];
+        }
         double top = 0.0;
         for (std::size_t j = 0; j < kLanes; ++j) {
           if (nan[j] != 0.0) return kNaN;
@@ -395,38 +385,18 @@ double ClothNetwork::max_net_force(const NodeVectors& F, StepThreads* threads) c
   return std::sqrt(m2);
 }
 
-// Summed in lanes (in_lanes), combined at the end, so the loops vectorise: the
-// divergence monitor takes two energies every check.
 Energy ClothNetwork::energy(const ClothState& s) const {
-  const double *const px = s.x.data(), *const py = s.y.data(), *const pz = s.z.data();
-  const double *const vx = s.vx.data(), *const vy = s.vy.data(), *const vz = s.vz.data();
-  const double *const w = masses.inverse_mass.data(), *const free = masses.free.data();
-  const double gx = gravity.x(), gy = gravity.y(), gz = gravity.z();
-  double kinetic[kLanes] = {}, lift[kLanes] = {}, spring[kLanes] = {};
-  const std::size_t n = node_count();
-  // Pinned nodes neither move nor fall: their mass (infinite) counts as 0. A
-  // state that is not finite anywhere, pinned nodes included, gives a
-  // non-finite energy (the monitor refuses such a state before asking).
-  const auto node = [&](std::size_t i, std::size_t j) {
-    const double m = free[i] == 0.0 ? 0.0 : 1.0 / w[i];
-    kinetic[j] += 0.5 * m * (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]);
-    lift[j] += m * (gx * px[i] + gy * py[i] + gz * pz[i]);
-  };
-  in_lanes(0, n, node);
-  const std::int32_t *const a = springs.node_a.data(), *const b = springs.node_b.data();
-  const double *const rest = springs.rest_length.data(), *const k = springs.stiffness.data();
-  const SpringFunction f = springs.function;
-  const auto one = [&](std::size_t q, std::size_t j) {
-    const double dx = px[b[q]] - px[a[q]], dy = py[b[q]] - py[a[q]], dz = pz[b[q]] - pz[a[q]];
-    const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-    spring[j] += k[q] * f.energy(len - rest[q], rest[q]);
-  };
-  in_lanes(0, springs.size(), one);
   Energy e;
-  for (std::size_t j = 0; j < kLanes; ++j) {
-    e.kinetic += kinetic[j];
-    e.gravity -= lift[j];
-    e.spring += spring[j];
+  for (std::size_t i = 0; i < node_count(); ++i) {
+    if (masses.free[i] == 0.0) continue;  // pinned nodes neither move nor fall
+    const double m = 1.0 / masses.inverse_mass[i];
+    e.kinetic += 0.5 * m * s.velocity(i).squaredNorm();
+    e.gravity -= m * gravity.dot(s.position(i));
+  }
+  for (std::size_t k = 0; k < springs.size(); ++k) {
+    const double len = (s.position(springs.node_b[k]) - s.position(springs.node_a[k])).norm();
+    e.spring += springs.stiffness[k] *
+                springs.function.energy(len - springs.rest_length[k], springs.rest_length[k]);
   }
   return e;
 }
