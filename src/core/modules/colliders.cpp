@@ -152,11 +152,12 @@ class Collider final : public ConstraintModule {
     const double* free = net.masses.free.data();
     // Blocks of nodes: a cheap vectorised scan finds the blocks with a node
     // near the shape, so a collider the cloth is far from costs one pass. In
-    // a block with one, the exact contact runs per node (the shape's own
-    // branches), then correct_contacts corrects the whole block in one
-    // vectorised loop of selects: a cloth lying on a table has thousands of
-    // contacts a step, and branching per node on pressing or not, sticking or
-    // sliding was most of the collider's cost (docs/tradeoff.md).
+    // a block with one, face_contacts finds the shape's simple contacts in one
+    // vectorised loop (a cloth resting on a box's face) and the exact
+    // contact() runs only for the nodes it flags; then correct_contacts
+    // corrects the whole block in one vectorised loop of selects: a cloth lying
+    // on a table has thousands of contacts a step, and branching per node was
+    // most of the collider's cost (docs/tradeoff.md).
     // Each node is corrected on its own: the team's parts take node ranges.
     for_node_parts(span.threads, n, [&](std::size_t lo, std::size_t hi) {
       BlockContacts found;

@@ -357,7 +357,10 @@ TEST(ColliderBox, TheBranchFreeFaceContactIsTheExactOne) {
     ASSERT_EQ(nz, c.normal.z()) << n;
     ASSERT_GT(phi, 0.0) << n;  // only ever outside, on one face
   }
-  EXPECT_GT(claimed, checked / 10);  // a face's common case is claimed
+  // The face's common case is claimed: 76,970 of the 200,000 steps (38.5%) with
+  // this seed, nearly every node outside one pair of faces whose step stayed
+  // beyond it.
+  EXPECT_GE(claimed, checked * 38 / 100);
   double phi = 0, nx = 0, ny = 0, nz = 0;
   const Vec3 top = spec.center + Vec3(0, spec.half_extents.y() + 0.001, 0);
   EXPECT_TRUE(box.face_contact(top.x(), top.y() + 0.01, top.z(), top.x(), top.y(), top.z(), phi, nx,
