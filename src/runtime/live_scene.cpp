@@ -203,7 +203,7 @@ std::string LiveScene::on(const SetIntegrator& c) {
            " (expected one of: " + integrator_names() + ")";
   SolverSettings s = run_->sim.settings();
   s.integrator = c.kind;
-  if (c.kind == IntegratorKind::projective) s.adaptive = false;  // it takes fixed steps
+  if (iterates_per_step(c.kind)) s.adaptive = false;  // it takes fixed steps
   run_->sim.set_solver_settings(s);
   return {};
 }

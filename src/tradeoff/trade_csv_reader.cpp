@@ -324,15 +324,16 @@ class TradeCsvParser {
     return v;
   }
 
-  // Projective's iterations per step: a count a scene could ask for, or empty (a
-  // file without the column, or one re-written from it: the scene's own). The
-  // other methods do not iterate: empty.
+  // Projective's or vbd's iterations per step: a count a scene could ask for, or
+  // empty (a file without the column, or one re-written from it: the scene's
+  // own). The other methods do not iterate: empty.
   int iterations(const Field& f, const std::string& method) const {
     if (f.text.empty()) return 0;
-    if (method != to_string(IntegratorKind::projective))
+    const auto kind = parse_integrator(method);
+    if (!kind || !iterates_per_step(*kind))
       in_.fail("iterations",
-               "must be empty for " + method + " (only projective iterates), got " + f.text, line_,
-               f.column);
+               "must be empty for " + method + " (only projective and vbd iterate), got " + f.text,
+               line_, f.column);
     const long n = in_.count(f, "iterations", line_);
     if (!limits::kIterations.contains(static_cast<double>(n)))
       in_.fail("iterations", limits::kIterations.refusal(static_cast<double>(n)), line_, f.column);

@@ -20,8 +20,9 @@ SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
   base.integrator = *kind;
   base.adaptive = false;
   if (row.iterations != 0) {
-    if (*kind != IntegratorKind::projective)
-      throw std::invalid_argument(row.method + " takes no iterations (only projective iterates)");
+    if (!iterates_per_step(*kind))
+      throw std::invalid_argument(row.method +
+                                  " takes no iterations (only projective and vbd iterate)");
     base.iterations = row.iterations;
   }
   if (row.linear_tolerance != 0) {

@@ -36,9 +36,9 @@ struct TradeRow {
   std::string parameter;  // what the sweep varies: "dt" (fixed step) or "safety" (adaptive)
   double value = 0;       // its value
   double dt = 0;          // the fixed step, or the adaptive refresh interval t_delta, s
-  // The projective integrator's local-global iterations per step: its accuracy
-  // knob besides dt, swept at each step. 0 for every other method, and for a
-  // projective row of a file without the column (it then runs at the scene's own
+  // The projective integrator's local-global iterations per step (vbd's
+  // sweeps): its accuracy knob besides dt, swept at each step. 0 for every other
+  // method, and for a projective row of a file without the column (it then runs at the scene's own
   // solver.iterations, as it was measured).
   int iterations = 0;
   // The implicit step's conjugate-gradient tolerance (relative residual): its

@@ -152,7 +152,7 @@ struct Sweep {
     row.method = method;
     row.parameter = parameter;
     row.value = value;
-    if (s.integrator == IntegratorKind::projective) row.iterations = s.iterations;
+    if (iterates_per_step(s.integrator)) row.iterations = s.iterations;
     say(describe_row(row));
     out.rows.push_back(row);
     return row;
@@ -217,14 +217,14 @@ struct Sweep {
     return true;
   }
 
-  // Projective has two knobs: its step and its iterations per step.
-  void projective() {
+  // Projective and vbd have two knobs: the step and the iterations per step.
+  void iterating(IntegratorKind kind, const std::vector<int>& counts) {
     std::vector<SolverSettings> lines;
-    for (int iterations : plan.projective_iterations) {
+    for (int iterations : counts) {
       lines.push_back(scene.solver);
       lines.back().iterations = iterations;
     }
-    two_knobs(IntegratorKind::projective, lines);
+    two_knobs(kind, lines);
   }
 
   // So has the implicit step: its step and its conjugate-gradient tolerance.
@@ -329,12 +329,16 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
   if (!(plan.seconds > 0) || !std::isfinite(plan.seconds))
     throw std::invalid_argument("seconds must be a finite number > 0");
   if (plan.samples < 1) throw std::invalid_argument("samples must be >= 1");
-  if (wanted(plan, to_string(IntegratorKind::projective))) {
-    if (plan.projective_iterations.empty())
-      throw std::invalid_argument("projective needs at least one iterations count to sweep");
-    for (int i : plan.projective_iterations)
+  for (const auto& [kind, counts] :
+       {std::pair{IntegratorKind::projective, &plan.projective_iterations},
+        std::pair{IntegratorKind::vbd, &plan.vbd_iterations}}) {
+    const std::string name = to_string(kind);
+    if (!wanted(plan, name)) continue;
+    if (counts->empty())
+      throw std::invalid_argument(name + " needs at least one iterations count to sweep");
+    for (int i : *counts)
       if (!limits::kIterations.contains(i))
-        throw std::invalid_argument("projective iterations must be in [1, 1000], got " +
+        throw std::invalid_argument(name + " iterations must be in [1, 1000], got " +
                                     std::to_string(i));
   }
   if (wanted(plan, to_string(IntegratorKind::implicit_euler))) {
@@ -383,7 +387,11 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
     if (kind == IntegratorKind::rk4)
       sweeps.emplace_back([](Sweep& s) { s.rk4(); });
     else if (kind == IntegratorKind::projective)
-      sweeps.emplace_back([](Sweep& s) { s.projective(); });
+      sweeps.emplace_back(
+          [](Sweep& s) { s.iterating(IntegratorKind::projective, s.plan.projective_iterations); });
+    else if (kind == IntegratorKind::vbd)
+      sweeps.emplace_back(
+          [](Sweep& s) { s.iterating(IntegratorKind::vbd, s.plan.vbd_iterations); });
     else if (kind == IntegratorKind::implicit_euler)
       sweeps.emplace_back([](Sweep& s) { s.implicit(); });
     else

@@ -31,6 +31,9 @@ struct TradeoffPlan {
   // Projective's second knob: its sweep runs each of these iterations counts at
   // every step it tries (docs/tradeoff.md says why these). Each in [1, 1000].
   std::vector<int> projective_iterations = {1, 2, 4, 10, 30};
+  // vbd's sweeps per step, likewise: more than projective's, since each carries
+  // a change a few nodes across the cloth, not across all of it.
+  std::vector<int> vbd_iterations = {4, 10, 30, 100};
   // The implicit step's second knob, likewise: its conjugate-gradient tolerance
   // (relative residual; docs/tradeoff.md says why these). Each in [1e-14, 0.01].
   std::vector<double> implicit_tolerances = {1e-10, 1e-6, 1e-3};
@@ -40,7 +43,7 @@ struct TradeoffPlan {
   // window's real-time pick, realtime_pick.h). Each must divide the sample
   // interval seconds / samples into whole steps. RK4 and adaptive are unchanged.
   std::vector<double> steps;
-  // The methods to sweep (integrator names and/or "adaptive"); empty: all six.
+  // The methods to sweep (integrator names and/or "adaptive"); empty: all of them.
   // RK4's line always comes from the reference's own runs.
   std::vector<std::string> methods;
   // Method lines measured at once, each on a thread of its own: 0 is one per

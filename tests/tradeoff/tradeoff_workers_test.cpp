@@ -29,6 +29,7 @@ TradeoffPlan tiny_plan(int workers) {
   plan.max_levels = 2;
   plan.min_levels = 1;
   plan.projective_iterations = {1, 4};
+  plan.vbd_iterations = {1, 4};
   plan.reference.max_halvings = 2;
   plan.reference.budget_seconds = 1e6;
   plan.method_budget_seconds = 1e6;
@@ -109,7 +110,7 @@ TEST(TradeoffWorkers, TwoWorkersMeasureWhatOneDoesInTheSameOrder) {
   for (const TradeRow& r : a)
     if (methods.empty() || methods.back() != r.method) methods.push_back(r.method);
   EXPECT_EQ(methods, (std::vector<std::string>{"network", "explicit_euler", "verlet", "rk4",
-                                               "implicit_euler", "projective", "adaptive"}));
+                                               "implicit_euler", "projective", "vbd", "adaptive"}));
   for (std::size_t i = 0; i < a.size(); ++i) {
     SCOPED_TRACE("row " + std::to_string(i) + ": " + describe_setting(a[i]));
     EXPECT_EQ(a[i].method, b[i].method);

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   simulate->add_option("--integrator", sim.integrator, "One of: " + integrator_names());
   simulate->add_option("--dt", sim.dt, "Time step (the refresh interval when adaptive), s");
   simulate->add_option("--iterations", sim.iterations,
-                       "projective: local-global iterations per step (default " +
+                       "projective: local-global iterations per step; vbd: sweeps (default " +
                            std::to_string(kDefaultProjectiveIterations) + ")");
   auto* adaptive =
       simulate->add_flag("--adaptive", sim.adaptive, "Adaptive propagation (paper, Table 1)");
@@ -102,6 +102,10 @@ int main(int argc, char** argv) {
   tradeoff
       ->add_option("--projective-iterations", trade.projective_iterations,
                    "Projective's iterations per step, each run at every step (default 1,2,4,10,30)")
+      ->delimiter(',');
+  tradeoff
+      ->add_option("--vbd-iterations", trade.vbd_iterations,
+                   "vbd's sweeps per step, each run at every step (default 4,10,30,100)")
       ->delimiter(',');
   tradeoff
       ->add_option("--implicit-tolerances", trade.implicit_tolerances,

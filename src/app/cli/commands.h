@@ -30,7 +30,7 @@ struct SimulateOptions {
   double seconds = 0;
   std::optional<std::string> integrator;
   std::optional<double> dt;
-  std::optional<int> iterations;  // projective's local-global iterations per step
+  std::optional<int> iterations;  // projective's local-global iterations or vbd's sweeps per step
   bool adaptive = false;
   bool fixed_step = false;
   std::string out;
@@ -74,6 +74,7 @@ struct TradeoffOptions {
   int levels = 7;                           // settings per method at most
   std::vector<std::string> methods;         // empty: all
   std::vector<int> projective_iterations;   // empty: the sweep's own grid
+  std::vector<int> vbd_iterations;          // empty: the sweep's own grid
   std::vector<double> implicit_tolerances;  // empty: the sweep's own grid
   // --size N: the scene's cloth resized to N x N (resized_grid), as the window's
   // --size runs it; the trade then holds at that size only.

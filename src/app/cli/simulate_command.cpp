@@ -68,7 +68,7 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
   const bool was_float = scene.solver.precision != SpringPrecision::float64;
   scene.solver.precision = SpringPrecision::float64;
   pick.row = c.row;
-  if (c.settings.integrator == IntegratorKind::projective) pick.iterations = c.settings.iterations;
+  if (iterates_per_step(c.settings.integrator)) pick.iterations = c.settings.iterations;
   if (c.settings.integrator == IntegratorKind::implicit_euler)
     pick.linear_tolerance = c.settings.linear_tolerance;
   pick.trade_seconds = trade.seconds;
@@ -128,7 +128,7 @@ int run_simulate(const SimulateOptions& o) {
                            "' (expected one of: " + integrator_names() + ")");
     scene.solver.integrator = *kind;
     // It takes fixed steps: asked for by name on an adaptive scene, it gets them.
-    if (*kind == IntegratorKind::projective) scene.solver.adaptive = false;
+    if (iterates_per_step(*kind)) scene.solver.adaptive = false;
   }
   if (o.dt) {
     if (!(*o.dt > 0) || !std::isfinite(*o.dt))

@@ -79,6 +79,9 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   for (int i : o.projective_iterations)
     if (!limits::kIterations.contains(i))
       throw InputError("command line", "--projective-iterations", limits::kIterations.refusal(i));
+  for (int i : o.vbd_iterations)
+    if (!limits::kIterations.contains(i))
+      throw InputError("command line", "--vbd-iterations", limits::kIterations.refusal(i));
   for (double t : o.implicit_tolerances)
     if (!limits::kLinearTolerance.contains(t))
       throw InputError("command line", "--implicit-tolerances",
@@ -98,6 +101,7 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
     plan.steps.push_back(*dt);
   }
   if (!o.projective_iterations.empty()) plan.projective_iterations = o.projective_iterations;
+  if (!o.vbd_iterations.empty()) plan.vbd_iterations = o.vbd_iterations;
   if (!o.implicit_tolerances.empty()) plan.implicit_tolerances = o.implicit_tolerances;
   plan.seconds = o.seconds;
   plan.samples = o.samples;

@@ -20,6 +20,8 @@ const char* to_string(IntegratorKind k) {
       return "implicit_euler";
     case IntegratorKind::projective:
       return "projective";
+    case IntegratorKind::vbd:
+      return "vbd";
   }
   return "?";
 }
@@ -59,6 +61,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const ClothNetw
       return make_implicit_euler(net, min_step_fraction, linear_tolerance, preconditioner);
     case IntegratorKind::projective:
       return make_projective(net, iterations);
+    case IntegratorKind::vbd:
+      return make_vertex_block_descent(net, iterations);
   }
   return nullptr;
 }

@@ -11,12 +11,20 @@
 
 namespace neurocloth {
 
-enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler, projective };
+enum class IntegratorKind { network, explicit_euler, verlet, rk4, implicit_euler, projective, vbd };
 inline constexpr IntegratorKind kAllIntegrators[] = {
     IntegratorKind::network, IntegratorKind::explicit_euler, IntegratorKind::verlet,
-    IntegratorKind::rk4,     IntegratorKind::implicit_euler, IntegratorKind::projective};
+    IntegratorKind::rk4,     IntegratorKind::implicit_euler, IntegratorKind::projective,
+    IntegratorKind::vbd};
 
-// Local-global iterations per step of `projective` (its accuracy knob) unless a scene says.
+// The large steps that minimise backward Euler's energy by a fixed number of
+// iterations a step (their accuracy knob, SolverSettings::iterations) and take
+// fixed steps: projective (local-global) and vbd (vertex block descent).
+inline bool iterates_per_step(IntegratorKind k) {
+  return k == IntegratorKind::projective || k == IntegratorKind::vbd;
+}
+
+// Iterations per step of `projective` and `vbd` (their accuracy knob) unless a scene says.
 inline constexpr int kDefaultProjectiveIterations = 10;
 // The implicit step's conjugate gradient stops at |r| <= this * |b|. Tight
 // enough that the linear solve adds nothing visible to the step's own error
@@ -40,7 +48,7 @@ std::string integrator_names();
 
 struct StepReport {
   int force_evaluations = 0;  // including the start-of-step evaluation
-  int cg_iterations = 0;      // or projective's local-global iterations
+  int cg_iterations = 0;      // or projective's local-global iterations, vbd's sweeps
   bool cg_converged = true;
 };
 
@@ -76,7 +84,7 @@ class Integrator {
 
 // Scratch is sized for `net`; the integrator may then step any network of that size.
 // `min_step_fraction` is the floor of the implicit step's pieces (step_controller.h);
-// `iterations` the projective step's local-global iterations; `linear_tolerance`
+// `iterations` the projective step's local-global iterations or vbd's sweeps; `linear_tolerance`
 // the implicit step's conjugate gradient tolerance (relative residual) and
 // `preconditioner` what preconditions it; `implicit_damping` the network
 // step's damping taken spring by spring (spring_damping.h; the other

@@ -15,4 +15,5 @@ std::unique_ptr<Integrator> make_implicit_euler(const ClothNetwork& net, double 
                                                 double linear_tolerance,
                                                 ImplicitPreconditioner preconditioner);
 std::unique_ptr<Integrator> make_projective(const ClothNetwork& net, int iterations);
+std::unique_ptr<Integrator> make_vertex_block_descent(const ClothNetwork& net, int iterations);
 }  // namespace neurocloth

@@ -29,6 +29,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/integrators/chebyshev.h"
+#include "core/integrators/inertial_target.h"
 #include "core/integrators/integrator_factory.h"
 #include "core/integrators/spring_laplacian.h"
 #include "core/network/reciprocal_sqrt.h"
@@ -57,45 +59,27 @@ class Projective final : public Integrator {
   StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
                   const NodeVectors&, double h, ClothState& out) override {
     refactor_if_needed(net, h);
-    inertial_target(net, inputs, in, h);
+    inertial_displacement(net, inputs, in, h, other_force_, y_);
+    prev_ = y_;
     step_base(net);
     x_ = y_;
     // Without a factor (a matrix that is not positive definite: no weight can
     // make one in range) the step is the inertial one, and says it did not converge.
     const int iterations = factored_ ? iterations_ : 0;
-    // Chebyshev needs the rate at which plain iterations converge. It depends
-    // on the cloth and the step, not on the state much, so it is measured once,
-    // on a step of plain iterations, and kept; an update that grows (the
-    // estimate was too bold) restarts from a plain iteration and lowers it.
-    const bool measure = rho_ == 0 && iterations > 0;
-    double omega = 1, last_update = 0, first_half = 0;
+    chebyshev_.begin(iterations);
     for (int it = 0; it < iterations; ++it) {
       local_global(net, in, h, inputs.threads);  // rhs_ now holds the global step's answer
       double update = 0;
       for (std::size_t i = 0; i < rhs_.size(); ++i)
         update += (rhs_[i] - x_[i]) * (rhs_[i] - x_[i]);
-      update = std::sqrt(update);
-      if (measure) {
-        omega = 1;
-        if (it == iterations_ / 2) first_half = update;
-      } else if (it == 0) {
-        omega = 1;
-      } else if (update > last_update) {
-        omega = 1;
-        rho_ *= kRhoBackoff;
-      } else {
-        omega = omega == 1 ? 2 / (2 - rho_ * rho_) : 4 / (4 - rho_ * rho_ * omega);
-      }
-      last_update = update;
+      const double omega = chebyshev_.weight(it, std::sqrt(update));
       for (std::size_t i = 0; i < x_.size(); ++i) {
         const double next = omega * (rhs_[i] - prev_[i]) + prev_[i];
         prev_[i] = x_[i];
         x_[i] = omega == 1 ? rhs_[i] : next;
       }
     }
-    const int span = iterations_ - 1 - iterations_ / 2;
-    if (measure && span >= 2 && first_half > 0 && last_update > 0 && last_update < first_half)
-      rho_ = std::min(kMaxRho, std::pow(last_update / first_half, 1.0 / span));
+    chebyshev_.end();
     for (std::size_t i = 0; i < n_; ++i) {
       const bool pinned = net.masses.free[i] == 0.0;  // moves on at its own velocity
       out.vx[i] = pinned ? in.vx[i] : x_[i] / h;
@@ -112,7 +96,6 @@ class Projective final : public Integrator {
   }
 
  private:
-  static constexpr double kMaxRho = 0.999;
   static constexpr double kNearTolerance = 1e-13;
   static constexpr int kNearIterations = 200;
   // The factor's fill grows faster than the nodes (1.15 M entries at 128 x 128,
@@ -126,8 +109,6 @@ class Projective final : public Integrator {
                                   std::to_string(kMaxNodes) +
                                   " (512 x 512); choose another integrator");
   }
-  static constexpr double kRhoBackoff = 0.99;
-
   // The global matrix's weights in the h^2-scaled form: M, and h^2 (k + k') + h d per
   // spring. A factor costs what hundreds of solves cost (340 ms at 128 x 128), so it
   // is made for the matrix a run keeps: one asked for twice in a row. A one-off
@@ -146,25 +127,8 @@ class Projective final : public Integrator {
       near_ = true;
       return;
     }
-    rho_ = 0;  // another matrix converges at another rate
+    chebyshev_.forget();  // another matrix converges at another rate
     factored_ = laplacian_.factor(L, node_weight_, spring_weight_, net.masses.free);
-  }
-
-  // The inertial displacement y - x0 = h v0 + h^2 M^-1 (f_other + m g) on free
-  // nodes; a pinned node moves h v0.
-  void inertial_target(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                       double h) {
-    net.other_forces(in, inputs, other_force_);
-    const double* const v[3] = {in.vx.data(), in.vy.data(), in.vz.data()};
-    const double* const f[3] = {other_force_.x.data(), other_force_.y.data(),
-                                other_force_.z.data()};
-    const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};
-    for (std::size_t c = 0; c < 3; ++c)
-      for (std::size_t i = 0; i < n_; ++i) {
-        const double free = net.masses.free[i], w = net.masses.inverse_mass[i];
-        y_[c * n_ + i] = h * v[c][i] + free * h * h * (w * f[c][i] + g[c]);
-      }
-    prev_ = y_;
   }
 
   // One local step at x_ and one global solve: rhs_ <- P^-1 (M y + sum_s A_s^T c_s),
@@ -300,7 +264,7 @@ class Projective final : public Integrator {
   std::vector<double> node_weight_, spring_weight_;
   SpringLaplacian laplacian_;
   bool factored_ = false;
-  double rho_ = 0;                  // plain iterations' convergence rate; 0 until measured
+  ChebyshevAcceleration chebyshev_;
   bool near_ = false;               // this step's matrix is not the factored one
   bool near_converged_ = true;      // and its solves converged
   std::vector<double> last_asked_;  // the spring weights the last step asked for

@@ -33,7 +33,7 @@ struct StepCounters {
   long steps = 0;     // accepted steps
   long rejected = 0;  // adaptive trials rolled back
   long force_evaluations = 0;
-  long cg_iterations = 0;      // or projective's local-global iterations
+  long cg_iterations = 0;      // or projective's local-global iterations, vbd's sweeps
   int steps_since_check = 0;   // accepted steps since the last full check
   int degenerate_springs = 0;  // springs with no length at the last check
 };

@@ -114,7 +114,7 @@ inline std::unique_ptr<Integrator> make_integrator(const SolverSettings& s,
 // what they converge to, and they are not where those steps spend their time.
 inline std::string precision_conflict(IntegratorKind integrator, SpringPrecision precision) {
   if (precision == SpringPrecision::float64) return "";
-  if (integrator != IntegratorKind::implicit_euler && integrator != IntegratorKind::projective)
+  if (integrator != IntegratorKind::implicit_euler && !iterates_per_step(integrator))
     return "";
   return std::string(
              "\"float\" is for the explicit integrators (network, explicit_euler, "
@@ -150,10 +150,12 @@ inline void validate(const SolverSettings& s) {
   if (d.runaway_checks < 1) fail("runaway_checks", ">= 1", d.runaway_checks);
   if (!(d.hard_factor >= d.runaway_factor)) fail("hard_factor", ">= runaway_factor", d.hard_factor);
   if (s.step_budget < 1) fail("step_budget", ">= 1", static_cast<double>(s.step_budget));
-  // Its factor is made for one step; the adaptive rule would ask for a new one
-  // at every trial (docs/network.md, "Large steps").
-  if (s.integrator == IntegratorKind::projective && s.adaptive)
-    fail("adaptive", "false for the projective integrator, which takes fixed steps", 1);
+  // Their iterations are tuned to one step (projective's factor, both
+  // Chebyshev rates); the adaptive rule would ask for new ones at every trial
+  // (docs/network.md, "Large steps").
+  if (iterates_per_step(s.integrator) && s.adaptive)
+    fail("adaptive", std::string("false for the ") + to_string(s.integrator) +
+                         " integrator, which takes fixed steps", 1);
   if (!limits::kIterations.contains(s.iterations))
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
   if (!limits::kLinearTolerance.contains(s.linear_tolerance))

@@ -97,10 +97,9 @@ ClothState backward_euler(const ClothNetwork& net, const ClothState& in, double 
   return at;
 }
 
-ClothState projective_step(const ClothNetwork& net, const ClothState& in, double h,
-                           int iterations) {
-  const auto integrator =
-      make_integrator(IntegratorKind::projective, net, kDefaultMinStepFraction, iterations);
+ClothState iterated_step(IntegratorKind kind, const ClothNetwork& net, const ClothState& in,
+                         double h, int iterations) {
+  const auto integrator = make_integrator(kind, net, kDefaultMinStepFraction, iterations);
   NodeVectors f(net.node_count());
   net.net_forces(in, f);
   ClothState out = in;
@@ -111,7 +110,8 @@ ClothState projective_step(const ClothNetwork& net, const ClothState& in, double
   return out;
 }
 
-void converges_to_backward_euler(bool stiffening) {
+void converges_to_backward_euler(IntegratorKind kind, bool stiffening,
+                                 const std::vector<int>& counts) {
   const Moving m = moving_cloth(8, stiffening);
   const double h = 1.0 / 60;
   const ClothState reference = backward_euler(m.net, m.state, h);
@@ -120,24 +120,34 @@ void converges_to_backward_euler(bool stiffening) {
   const double moved = max_difference(reference, m.state);
   ASSERT_GT(moved, 1e-3);
   std::vector<double> errors;
-  for (int iterations : {2, 8, 32, 128, 512}) {
-    errors.push_back(max_difference(projective_step(m.net, m.state, h, iterations), reference));
+  for (int iterations : counts) {
+    errors.push_back(max_difference(iterated_step(kind, m.net, m.state, h, iterations), reference));
     if (errors.size() > 1) {
       EXPECT_LT(errors.back(), errors[errors.size() - 2]) << iterations;
     }
   }
-  if (stiffening)  // the matrix holds the stiff branch everywhere: slower, still converging
-    EXPECT_LT(errors.back(), 0.1 * errors.front());
+  if (stiffening && kind == IntegratorKind::projective)  // its matrix holds the stiff branch
+    EXPECT_LT(errors.back(), 0.1 * errors.front());      // everywhere: slower, still converging
   else
-    EXPECT_LT(errors.back(), 1e-7 * moved) << "512 iterations";
+    EXPECT_LT(errors.back(), 1e-7 * moved) << counts.back() << " iterations";
 }
 
 TEST(Projective, ConvergesToBackwardEulerAsItsIterationsGrow) {
-  converges_to_backward_euler(false);
+  converges_to_backward_euler(IntegratorKind::projective, false, {2, 8, 32, 128, 512});
 }
 
 TEST(Projective, ConvergesToBackwardEulerOnStiffeningSprings) {
-  converges_to_backward_euler(true);
+  converges_to_backward_euler(IntegratorKind::projective, true, {2, 8, 32, 128, 512});
+}
+
+// Vertex block descent solves the same minimisation one node at a time, each
+// with its own Hessian (the stiff branch only where a spring is on it).
+TEST(VertexBlockDescent, ConvergesToBackwardEulerAsItsSweepsGrow) {
+  converges_to_backward_euler(IntegratorKind::vbd, false, {2, 8, 32, 128, 512});
+}
+
+TEST(VertexBlockDescent, ConvergesToBackwardEulerOnStiffeningSprings) {
+  converges_to_backward_euler(IntegratorKind::vbd, true, {2, 8, 32, 128, 512});
 }
 
 TEST(Projective, RefactorsWhenAWeightChanges) {

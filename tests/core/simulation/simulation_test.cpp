@@ -274,7 +274,8 @@ TEST(Simulation, FloatSpringsAreDeterministic) {
 
 // Float is refused by name where it has no meaning: the implicit integrators.
 TEST(Simulation, FloatPrecisionIsRefusedForTheImplicitIntegratorsByName) {
-  for (const IntegratorKind kind : {IntegratorKind::implicit_euler, IntegratorKind::projective}) {
+  for (const IntegratorKind kind :
+       {IntegratorKind::implicit_euler, IntegratorKind::projective, IntegratorKind::vbd}) {
     SolverSettings settings;
     settings.integrator = kind;
     settings.precision = SpringPrecision::float32;
