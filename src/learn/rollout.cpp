@@ -258,7 +258,7 @@ namespace {
 // (docs/stability.md) — says nothing about the scene, and its differences
 // disagree with any adjoint.
 void require_sound_run(Simulation& sim, double duration) {
-  if (sim.advance(duration) != RunStatus::ok || sim.check_now() != RunStatus::ok)
+  if (sim.advance(duration) != RunStatus::ok || sim.check_result() != RunStatus::ok)
     throw std::runtime_error("the scene's own run diverged before " + show_number(duration) +
                              " s: " + sim.divergence_reason());
   if (sim.budget_exhausted())

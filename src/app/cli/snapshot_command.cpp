@@ -68,7 +68,7 @@ int run_snapshot(const SnapshotOptions& o) {
   const Scene scene = load_scene(o.scene);
   Simulation sim = scene.make_simulation();
   const LongRunOutcome run = run_long(sim, o.seconds);
-  sim.check_now();
+  sim.check_result();
   const double sim_wall = run.wall_seconds;
 
   FrameSnapshot snapshot;

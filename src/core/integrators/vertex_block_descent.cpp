@@ -182,6 +182,7 @@ class VertexBlockDescent final : public Integrator {
     edge_k_.resize(adjacent_node_.size());
     edge_d_.resize(adjacent_node_.size());
     edge_rest_.resize(adjacent_node_.size());
+    edge_n_.resize(3 * adjacent_node_.size());
     chebyshev_.forget();
   }
 
@@ -203,10 +204,40 @@ class VertexBlockDescent final : public Integrator {
     extra_ = L.function.stiffening_factor - 1.0;
   }
 
-  // One Newton step on node i's block, the rest held. The Hessian leaves out a
-  // compressed spring's negative transverse part, so the step descends. No line
-  // search: halving the steps that would climb cost a third more per sweep and
-  // changed no measured error (docs/tradeoff.md, "Vertex block descent").
+  // Node i's part of the energy with its displacement at u, the damping's
+  // directions held at the ones its Newton step was made with (edge_n_): its
+  // inertia and the springs it is in.
+  template <bool Stiffening>
+  double local_energy(std::size_t i, const double* u, double threshold) const {
+    const double* const r = node_.data() + 6 * i;
+    const double m = mass_[i];
+    const double ex = u[0] - y_[i], ey = u[1] - y_[n_ + i], ez = u[2] - y_[2 * n_ + i];
+    double energy = 0.5 * m * (ex * ex + ey * ey + ez * ez);
+    for (std::size_t e = adjacency_begin_[i]; e < adjacency_begin_[i + 1]; ++e) {
+      const double* const o = node_.data() + 6 * std::size_t(adjacent_node_[e]);
+      const double ux = u[0] - o[0], uy = u[1] - o[1], uz = u[2] - o[2];
+      const double dx = r[3] - o[3] + ux, dy = r[4] - o[4] + uy, dz = r[5] - o[5] + uz;
+      const double len2 = dx * dx + dy * dy + dz * dz;
+      const double len = len2 > kMinSpringLength * kMinSpringLength ? std::sqrt(len2) : 0.0;
+      const double k = edge_k_[e], rest = edge_rest_[e];
+      const double* const n = edge_n_.data() + 3 * e;
+      const double along = n[0] * ux + n[1] * uy + n[2] * uz;
+      energy += 0.5 * k * (len - rest) * (len - rest) + 0.5 * edge_d_[e] * along * along;
+      if constexpr (Stiffening) {
+        const double limit = threshold * rest;
+        if (len > limit) energy += 0.5 * k * extra_ * (len - limit) * (len - limit);
+      }
+    }
+    return energy;
+  }
+
+  // One Newton step on node i's block, the rest held, halved until it lowers
+  // the block's energy. The Hessian leaves out a compressed spring's negative
+  // transverse part, so the step points downhill, but it is long where the
+  // springs about a node are slack (only its mass resists sideways), and there
+  // a full step can climb: without the halving the 32² drape at 1/16 s and 10
+  // sweeps flew apart (docs/tradeoff.md, "Vertex block descent"). Each
+  // accepted step lowers the whole energy, since only node i's terms move.
   template <bool Stiffening>
   void relax(std::size_t i, double threshold) {
     const double m = mass_[i];
@@ -219,9 +250,16 @@ class VertexBlockDescent final : public Integrator {
       const double ux = r[0] - o[0], uy = r[1] - o[1], uz = r[2] - o[2];
       const double dx = r[3] - o[3] + ux, dy = r[4] - o[4] + uy, dz = r[5] - o[5] + uz;
       const double len2 = dx * dx + dy * dy + dz * dz;
-      if (!(len2 > kMinSpringLength * kMinSpringLength)) continue;  // no direction, no force
+      double* const held = edge_n_.data() + 3 * e;
+      if (!(len2 > kMinSpringLength * kMinSpringLength)) {  // no direction, no force
+        held[0] = held[1] = held[2] = 0;
+        continue;
+      }
       const double inv_len = reciprocal_sqrt(len2), len = len2 * inv_len;
       const double nx = inv_len * dx, ny = inv_len * dy, nz = inv_len * dz;
+      held[0] = nx;
+      held[1] = ny;
+      held[2] = nz;
       const double k = edge_k_[e], d = edge_d_[e], rest = edge_rest_[e];
       double along = k * (len - rest) + d * (ux * nx + uy * ny + uz * nz);
       // k (n n^T + (1 - r/l)(I - n n^T)) + d n n^T, the transverse part only when stretched.
@@ -253,10 +291,28 @@ class VertexBlockDescent final : public Integrator {
     const double det = h00 * c00 + h01 * c01 + h02 * c02;
     if (!(det > 0)) return;
     const double scale = -1.0 / det;
-    r[0] += scale * (c00 * gx + c01 * gy + c02 * gz);
-    r[1] += scale * (c01 * gx + c11 * gy + c12 * gz);
-    r[2] += scale * (c02 * gx + c12 * gy + c22 * gz);
+    const double step[3] = {scale * (c00 * gx + c01 * gy + c02 * gz),
+                            scale * (c01 * gx + c11 * gy + c12 * gz),
+                            scale * (c02 * gx + c12 * gy + c22 * gz)};
+    // Near the answer the decrease is below the energy's round-off: a step
+    // there is taken unless it climbs by more than that.
+    const double before = local_energy<Stiffening>(i, r, threshold) * (1 + kRoundOff);
+    double fraction = 1;
+    for (int halving = 0; halving <= kMaxHalvings; ++halving, fraction *= 0.5) {
+      const double u[3] = {r[0] + fraction * step[0], r[1] + fraction * step[1],
+                           r[2] + fraction * step[2]};
+      if (local_energy<Stiffening>(i, u, threshold) <= before) {
+        r[0] = u[0];
+        r[1] = u[1];
+        r[2] = u[2];
+        return;
+      }
+    }
   }
+
+  // Halvings of a Newton step before the node is left where it is this sweep.
+  static constexpr int kMaxHalvings = 8;
+  static constexpr double kRoundOff = 1e-12;
 
   int iterations_;
   std::size_t n_;
@@ -269,7 +325,8 @@ class VertexBlockDescent final : public Integrator {
   std::vector<std::size_t> adjacency_begin_;
   std::vector<std::int32_t> adjacent_node_, adjacent_spring_;
   std::vector<double> edge_k_, edge_d_, edge_rest_;  // h^2 k, h d, r
-  double extra_ = 0;                                 // the stiffening factor less one
+  std::vector<double> edge_n_;  // each edge's direction at its node's last Newton step
+  double extra_ = 0;            // the stiffening factor less one
   std::vector<std::size_t> colour_begin_;
   std::vector<std::int32_t> colour_nodes_;     // node numbers, colour after colour
   std::vector<std::int32_t> node_a_, node_b_;  // the topology the above were built for

@@ -169,7 +169,7 @@ RunResult run_case(const RunSpec& spec) {
         }
       }
     }
-    sim.check_now();  // the full check, as the command line does before writing a result
+    sim.check_result();  // the full check, as the command line does before writing a result
     r.status = sim.status();
     r.reason = sim.divergence_reason();
     r.finite = sim.state().all_finite();

@@ -29,7 +29,8 @@ DivergenceMonitor::DivergenceMonitor(const ClothNetwork& net, const ClothState& 
 }
 
 std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& s,
-                                     const ForceInputs& inputs, const ClothState& last_good) {
+                                     const ForceInputs& inputs, const ClothState& last_good,
+                                     bool final) {
   if (!s.all_finite()) return "non-finite position or velocity (NaN or Inf)";
   const Energy e = net.energy(s);
   if (!std::isfinite(e.total())) return "non-finite energy";
@@ -62,7 +63,8 @@ std::string DivergenceMonitor::check(const ClothNetwork& net, const ClothState& 
   };
   const bool runs_away = held > settings_.runaway_factor * budget;
   if (runs_away || growth > allowance) {
-    if (++strikes_ >= settings_.runaway_checks) return runs_away ? runaway() : unexplained();
+    if (++strikes_ >= settings_.runaway_checks || final)
+      return runs_away ? runaway() : unexplained();
   } else {
     strikes_ = 0;
   }

@@ -19,7 +19,9 @@
 //   now, so a material edit or a new drag does not read as growth.
 // A check that fails runaway or growth is a strike; runaway_checks strikes in
 // a row make a divergence (an implicit step on a very stiff cloth can lift the
-// energy a few hundred times for a step or two), one above hard_factor too.
+// energy a few hundred times for a step or two), one above hard_factor too,
+// and one at a final check: a result is written or measured only from a state
+// that passes outright (a run of fewer steps than check_interval has no other).
 #include <string>
 
 #include "core/network/cloth_network.h"
@@ -33,9 +35,10 @@ class DivergenceMonitor {
   DivergenceMonitor(const ClothNetwork& net, const ClothState& initial,
                     const DivergenceSettings& settings);
   // Empty when healthy; otherwise why the run diverged. `last_good` is the
-  // state of the last check that passed (the growth test's reference).
+  // state of the last check that passed (the growth test's reference). A
+  // `final` check (of a result no later check will see) diverges on one strike.
   std::string check(const ClothNetwork& net, const ClothState& state, const ForceInputs& inputs,
-                    const ClothState& last_good);
+                    const ClothState& last_good, bool final = false);
   bool striking() const { return strikes_ > 0; }
   // The largest rise of the mechanical energy over the last good state seen
   // so far, in allowances (growth_factor budgets): above 1 is a strike. What

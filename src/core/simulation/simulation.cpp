@@ -246,10 +246,17 @@ RunStatus Simulation::check_now() {
   return run_.status;
 }
 
-void Simulation::full_check() {
+RunStatus Simulation::check_result() {
+  if (run_.status == RunStatus::ok &&
+      (run_.counters.steps_since_check > 0 || run_.monitor.striking()))
+    full_check(true);
+  return run_.status;
+}
+
+void Simulation::full_check(bool final) {
   run_.counters.steps_since_check = 0;
   run_.counters.degenerate_springs = net_.degenerate_springs(state());
-  std::string why = run_.monitor.check(net_, state(), run_.inputs, run_.checkpoint.state);
+  std::string why = run_.monitor.check(net_, state(), run_.inputs, run_.checkpoint.state, final);
   if (why.empty()) {
     if (!run_.monitor.striking()) run_.checkpoint = {state(), run_.time, run_.counters.steps};
     return;

@@ -79,8 +79,13 @@ class Simulation {
     interrupt_ = std::move(interrupt);
   }
   bool interrupted() const { return interrupted_; }
-  // Runs the full divergence check now (e.g. before writing a result).
+  // Runs the full divergence check now (e.g. each frame of a live run).
   RunStatus check_now();
+  // The check of a state about to be written or measured (a result file, a
+  // trade's last sample, a fit's rollout): a strike there, or one left by the
+  // last periodic check, is a divergence at once, since no later check can
+  // confirm or clear it.
+  RunStatus check_result();
 
   const ClothNetwork& network() const { return net_; }
   // For parameter changes between steps; drops cached forces and step bounds.
@@ -188,7 +193,7 @@ class Simulation {
   void accept_trial(StepController& tc, double h, double landed_max_force, double frame_end);
   void reject_trial(StepController& tc);
   void check_if_due(bool force_check);
-  void full_check();
+  void full_check(bool final = false);
   void invalidate(Stale what) { ctx_.drop(what); }
 
   // The model: read by a step, changed only between steps.

@@ -114,8 +114,7 @@ inline std::unique_ptr<Integrator> make_integrator(const SolverSettings& s,
 // what they converge to, and they are not where those steps spend their time.
 inline std::string precision_conflict(IntegratorKind integrator, SpringPrecision precision) {
   if (precision == SpringPrecision::float64) return "";
-  if (integrator != IntegratorKind::implicit_euler && !iterates_per_step(integrator))
-    return "";
+  if (integrator != IntegratorKind::implicit_euler && !iterates_per_step(integrator)) return "";
   return std::string(
              "\"float\" is for the explicit integrators (network, explicit_euler, "
              "verlet, rk4), not ") +
@@ -154,8 +153,10 @@ inline void validate(const SolverSettings& s) {
   // Chebyshev rates); the adaptive rule would ask for new ones at every trial
   // (docs/network.md, "Large steps").
   if (iterates_per_step(s.integrator) && s.adaptive)
-    fail("adaptive", std::string("false for the ") + to_string(s.integrator) +
-                         " integrator, which takes fixed steps", 1);
+    fail("adaptive",
+         std::string("false for the ") + to_string(s.integrator) +
+             " integrator, which takes fixed steps",
+         1);
   if (!limits::kIterations.contains(s.iterations))
     fail("iterations", "in [1, 1000]", static_cast<double>(s.iterations));
   if (!limits::kLinearTolerance.contains(s.linear_tolerance))
