@@ -41,11 +41,12 @@ SampledRun run_sampled(const Scene& scene, const SolverSettings& settings,
   SampledRun run;
   run.settings = settings;
   const RunClock clock = run_clock(settings);
-  for (double t : times) {
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const double t = times[k];
     const double start = now_seconds(clock);
     sim.advance(t - sim.time());
     // The last sample is checked in full, as `simulate` checks its result.
-    if (&t == &times.back()) sim.check_result();
+    if (k + 1 == times.size()) sim.check_result();
     run.cost_seconds += now_seconds(clock) - start;
     if (sim.status() != RunStatus::ok) break;
     // A healthy run that did not get there ran out of its step budget (solver_settings.h).

@@ -14,6 +14,7 @@
 #include "support/test_support.h"
 #include "tradeoff/accuracy_choice.h"
 #include "tradeoff/pareto_front.h"
+#include "tradeoff/sampled_run.h"
 #include "tradeoff/trade_csv.h"
 #include "tradeoff/trade_summary.h"
 #include "tradeoff/tradeoff_sweep.h"
@@ -400,6 +401,30 @@ TEST(TradeoffSummary, NamesTheCheapestForEveryBudget) {
   const std::string unmet = trade_summary(t);
   EXPECT_NE(unmet.find("| 0.1% | not certified"), std::string::npos) << unmet;
   EXPECT_NE(unmet.find("**not met**"), std::string::npos) << unmet;
+}
+
+}  // namespace
+}  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+// A trade's run is checked in full at its last sample, as `simulate` checks
+// its result: a run that ends blown up, with no periodic check before (40
+// steps, fewer than check_interval), is a diverged row, not an "ok" one with
+// a large error. (The last sample was once told by the address of a copy, so
+// the check never ran.)
+TEST(SampledRun, TheLastSampleIsCheckedInFull) {
+  Scene scene = test::asset_scene("hanging");
+  SolverSettings s = scene.solver;
+  s.integrator = IntegratorKind::explicit_euler;
+  s.dt = 0.003;  // 24 times its stable step: the energy grows without bound
+  ASSERT_LT(40, s.divergence.check_interval);
+  const SampledRun run = run_sampled(scene, s, {20 * s.dt, 40 * s.dt});
+  EXPECT_EQ(run.status, RunStatus::diverged);
+  EXPECT_NE(run.reason.find("no source"), std::string::npos) << run.reason;
+  s.dt = 1e-4;  // below it: the same check passes
+  EXPECT_EQ(run_sampled(scene, s, {20 * 0.003, 40 * 0.003}).status, RunStatus::ok);
 }
 
 }  // namespace
