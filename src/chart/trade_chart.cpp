@@ -16,6 +16,7 @@ Rgb method_colour(const std::string& method) {
   if (method == "rk4") return {0.84, 0.15, 0.16};                    // red
   if (method == "implicit_euler") return {0.58, 0.40, 0.74};         // purple
   if (method == "projective") return {0.09, 0.75, 0.81};             // cyan
+  if (method == "vbd") return {0.74, 0.74, 0.13};                    // olive
   if (method == kAdaptiveMethod) return {0.55, 0.34, 0.29};          // brown
   if (method == kAdaptiveImplicitMethod) return {0.89, 0.47, 0.76};  // pink
   return {0.5, 0.5, 0.5};
@@ -25,7 +26,7 @@ Rgb line_colour(const TradeRow& row) {
   const Rgb c = method_colour(row.method);
   double shade = 1;
   if (row.iterations != 0)
-    // Projective's lines in its cyan, darker the fewer iterations: 1 at 40%, 30
+    // Projective's (and vbd's) lines in its colour, darker the fewer iterations: 1 at 40%, 30
     // and more at full strength, log-spaced between.
     shade =
         0.4 + 0.6 * std::min(1.0, std::log(static_cast<double>(row.iterations)) / std::log(30.0));

@@ -57,8 +57,8 @@ std::string percent(double fraction) {
 std::string trade_summary(const TradeTable& t, const std::string& chart) {
   std::ostringstream md;
   md << "# Speed against accuracy: " << t.scene << "\n\n";
-  md << "Every integrator over a sweep of fixed steps (projective at several iterations counts "
-        "per step as well) and the paper's adaptive propagation over a sweep of its safety "
+  md << "Every integrator over a sweep of fixed steps (projective and vbd at several iterations "
+        "counts per step as well) and the paper's adaptive propagation over a sweep of its safety "
         "factor, "
      << g3(t.seconds) << " s of `" << t.scene_file << "` each. Positions are compared with the "
      << "reference at " << t.samples << " times (every " << g3(t.seconds / t.samples)
