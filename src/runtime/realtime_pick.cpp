@@ -21,13 +21,18 @@ Scene with_solver(const Scene& scene, const SolverSettings& s) {
   return copy;
 }
 
-SolverSettings projective(const SolverSettings& own, int iterations) {
+SolverSettings projective(const SolverSettings& own, int iterations, int halvings = 0) {
   SolverSettings s = own;
   s.integrator = IntegratorKind::projective;
   s.adaptive = false;
-  s.dt = kRealtimeStep;
+  s.dt = kRealtimeStep / (1 << halvings);
   s.iterations = iterations;
   return s;
+}
+
+// "1/60", "1/120": the step kRealtimeStep halved `halvings` times.
+std::string step_name(int halvings) {
+  return "1/" + std::to_string(60 << halvings);
 }
 
 std::string format(const char* pattern, double value) {
@@ -36,14 +41,13 @@ std::string format(const char* pattern, double value) {
   return line;
 }
 
-// The trade's row for projective at kRealtimeStep and `iterations` that finished
-// its run, if any.
-const TradeRow* measured_row(const SizedTrade& trade, int iterations) {
+// The trade's row for projective at `dt` and `iterations` that finished its
+// run, if any.
+const TradeRow* measured_row(const SizedTrade& trade, int iterations, double dt) {
   if (!trade.table) return nullptr;
   for (const TradeRow& row : trade.table->rows)
     if (row.method == to_string(IntegratorKind::projective) && row.parameter == "dt" &&
-        std::abs(row.dt - kRealtimeStep) <= 1e-9 * kRealtimeStep && row.iterations == iterations &&
-        row.ok())
+        std::abs(row.dt - dt) <= 1e-9 * dt && row.iterations == iterations && row.ok())
       return &row;
   return nullptr;
 }
@@ -53,40 +57,47 @@ const TradeRow* measured_row(const SizedTrade& trade, int iterations) {
 // resolution of the least cannot be told apart: the fewest iterations among
 // those win then, leaving the window's renderer the most of the machine
 // (llvmpipe draws on the same cores).
-int least_measured_error(const SizedTrade& trade, int most) {
+int least_measured_error(const SizedTrade& trade, int most, double dt) {
   const TradeRow* least = nullptr;
   for (int it = 1; it <= most; ++it)
-    if (const TradeRow* row = measured_row(trade, it);
+    if (const TradeRow* row = measured_row(trade, it, dt);
         row && (!least || row->position_error_max < least->position_error_max))
       least = row;
   if (!least) return most;
   const double tie = reference_resolution(*trade.table);
   for (int it = 1; it <= most; ++it)
-    if (const TradeRow* row = measured_row(trade, it);
+    if (const TradeRow* row = measured_row(trade, it, dt);
         row && row->position_error_max <= least->position_error_max + tie)
       return it;
   return least->iterations;
 }
 
-// What the note says of the picked setting's error at this size.
-std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, int size) {
+// What the note says of the picked setting's error at this size (its step
+// kRealtimeStep halved `halvings` times).
+std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, int size,
+                           int halvings) {
   if (trade.path.empty()) return "";  // nobody looked for one
   const std::string grid = std::to_string(size) + " x " + std::to_string(size);
   if (pick.measured) {
     const TradeRow& row = *pick.measured;
     char s[512];
     std::snprintf(s, sizeof s,
-                  " Measured at %s: projective %d it., dt 1/60 s: max position error %.2g%% of "
+                  " Measured at %s: projective %d it., dt %s s: max position error %.2g%% of "
                   "the cloth's size over its first %g s (rms %.2g%%; the reference is good to "
                   "%.2g%%), in %s.",
-                  grid.c_str(), row.iterations, 100 * row.position_error_max, trade.table->seconds,
-                  100 * row.position_error_rms, 100 * reference_resolution(*trade.table),
-                  pick.measured_in.c_str());
+                  grid.c_str(), row.iterations, step_name(halvings).c_str(),
+                  100 * row.position_error_max, trade.table->seconds, 100 * row.position_error_rms,
+                  100 * reference_resolution(*trade.table), pick.measured_in.c_str());
     return s;
   }
   std::string says = " Its error at " + grid + " is not measured";
   if (!trade.problem.empty()) says += " (" + trade.problem + ")";
-  if (!trade.measure.empty()) says += "; to measure it: " + trade.measure;
+  std::string measure = trade.measure;
+  if (halvings > 0 && !trade.measure_finer.empty()) {
+    measure = trade.measure_finer;
+    measure.replace(measure.find("{}"), 2, step_name(halvings));
+  }
+  if (!measure.empty()) says += "; to measure it: " + measure;
   return says + ".";
 }
 
@@ -104,9 +115,13 @@ SizedTrade find_sized_trade(const std::string& scene_path, int n, const std::str
                               : path;
   // The window's settings exactly, against a reference the user can afford
   // (docs/tradeoff.md, "Sized trades": what it cost at 64 and 128).
-  trade.measure = "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
-                  " --seconds 1 --samples 4 --methods projective --dt 1/60 " +
-                  "--projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
+  auto command = [&](const std::string& step) {
+    return "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
+           " --seconds 1 --samples 4 --methods projective --dt " + step +
+           " --projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
+  };
+  trade.measure = command(step_name(0));
+  trade.measure_finer = command("{}");
   std::error_code missing;
   if (!std::filesystem::exists(path, missing)) return trade;
   try {
@@ -121,35 +136,48 @@ SizedTrade find_sized_trade(const std::string& scene_path, int n) {
   return find_sized_trade(scene_path, n, sized_trade_path(scene_path, n));
 }
 
-RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
-                                const SizedTrade& trade) {
+RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost, const SizedTrade& trade,
+                                const SoundProbe& sound) {
   RealtimePick pick;
   pick.own = pick.picked = scene.solver;
   pick.own_cost = pick.picked_cost = cost(scene);
   if (pick.own_cost <= kRealtimeBudget) return pick;
 
   // The projective step's cost grows linearly with its iterations (one local
-  // step and one prefactored solve each) on top of what a step costs anyway.
+  // step and one prefactored solve each) on top of what a step costs anyway,
+  // and doubles with each halving of the step.
   const double one = cost(with_solver(scene, projective(scene.solver, 1)));
   const double four = cost(with_solver(scene, projective(scene.solver, 4)));
   const double per_iteration = std::max(0.0, (four - one) / 3);
-  int iterations = 1;
-  for (int it = kDefaultProjectiveIterations; it > 1; --it)
-    if (one + (it - 1) * per_iteration <= kRealtimeBudget) {
-      iterations = it;
-      break;
+  auto fitting = [&](int halvings) {
+    const double scale = double(1 << halvings);
+    for (int it = kDefaultProjectiveIterations; it > 1; --it)
+      if (scale * (one + (it - 1) * per_iteration) <= kRealtimeBudget) return it;
+    return 1;
+  };
+  int halvings = 0, iterations = least_measured_error(trade, fitting(0), kRealtimeStep);
+  std::string unsound;  // the steps that diverged, "1/60, 1/120"
+  bool ran_through = true;
+  if (sound) {
+    while (!(ran_through =
+                 sound(with_solver(scene, projective(scene.solver, iterations, halvings))))) {
+      unsound += (unsound.empty() ? "" : ", ") + step_name(halvings);
+      if (halvings == kMaxStepHalvings) break;
+      ++halvings;
+      iterations = least_measured_error(trade, fitting(halvings), kRealtimeStep / (1 << halvings));
     }
-  iterations = least_measured_error(trade, iterations);
-  if (const TradeRow* row = measured_row(trade, iterations)) {
+  }
+  const double dt = kRealtimeStep / (1 << halvings);
+  if (const TradeRow* row = measured_row(trade, iterations, dt)) {
     pick.measured = *row;
     pick.measured_in = trade.path;
   }
   pick.switched = true;
-  pick.picked = projective(scene.solver, iterations);
-  pick.picked_cost = one + (iterations - 1) * per_iteration;
+  pick.picked = projective(scene.solver, iterations, halvings);
+  pick.picked_cost = double(1 << halvings) * (one + (iterations - 1) * per_iteration);
   std::string note = "Running projective, " + std::to_string(iterations) +
-                     (iterations == 1 ? " iteration" : " iterations") +
-                     ", dt 1/60 s, to keep real time: the scene's " +
+                     (iterations == 1 ? " iteration" : " iterations") + ", dt " +
+                     step_name(halvings) + " s, to keep real time: the scene's " +
                      to_string(scene.solver.integrator) +
                      format(" step runs %.2gx real time at this size", 1 / pick.own_cost);
   if (pick.picked_cost > 1)
@@ -157,8 +185,22 @@ RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
   else if (pick.picked_cost > kRealtimeBudget)
     note += format("; this runs %.2gx, with little to spare", 1 / pick.picked_cost);
   note += ".";
-  pick.note = note + error_sentence(pick, trade, scene.grid ? scene.grid->rows : trade.size);
+  if (!unsound.empty()) {
+    note += " At dt " + unsound + " s it diverged within the cloth's first " +
+            format("%g s", kSoundSeconds) +
+            " (a large step lands a fine cloth a whole step's fall at once and stretches it over "
+            "an edge)" +
+            (ran_through ? "." : "; no step tried ran through, so expect it to stop.");
+  }
+  pick.note =
+      note + error_sentence(pick, trade, scene.grid ? scene.grid->rows : trade.size, halvings);
   return pick;
+}
+
+bool runs_sound(const Scene& scene, double seconds) {
+  Simulation sim = scene.make_simulation();
+  sim.advance(seconds);
+  return sim.check_result() == RunStatus::ok;
 }
 
 double measure_cost(const Scene& scene, double wall_seconds, double max_sim_seconds) {

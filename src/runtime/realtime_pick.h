@@ -22,7 +22,8 @@ struct SizedTrade {
   std::string path;                 // where the trade at this size lives (sized_trade_path)
   std::optional<TradeTable> table;  // read from it, its size checked; none: not measured
   std::string problem;              // why a file that is there could not be used
-  std::string measure;              // the command that measures it
+  std::string measure;              // the command that measures it, at kRealtimeStep
+  std::string measure_finer;        // the same at the step a halving pick takes ({} for it)
 };
 
 // The trade of `scene_path` resized to n x n, read from `path` when the file
@@ -46,25 +47,46 @@ struct RealtimePick {
 
 // Wall seconds per simulated second of `scene` under its solver (a probe).
 using CostProbe = std::function<double(const Scene&)>;
+// Whether `scene` under its solver runs through its first kSoundSeconds
+// without diverging (runs_sound; a probe so the pick's logic is testable).
+using SoundProbe = std::function<bool(const Scene&)>;
 
 // The step a picked setting takes: one per frame of a 60 Hz display.
 inline constexpr double kRealtimeStep = 1.0 / 60.0;
 // A setting keeps up when it costs at most this share of real time: the rest
 // is for the window and for the cloth's harder moments than the probe's.
 inline constexpr double kRealtimeBudget = 0.7;
+// What a picked setting must run through without diverging: the sized trades'
+// window (docs/tradeoff.md), the fall and the drape over the table's edge.
+inline constexpr double kSoundSeconds = 1.0;
+// Halvings of kRealtimeStep the pick tries when a setting diverges there
+// (1/120, 1/240, 1/480 s).
+inline constexpr int kMaxStepHalvings = 3;
 
 // Keeps the scene's solver when `cost` says it keeps up; else the projective
-// step at kRealtimeStep with the most iterations (1..kDefaultProjectiveIterations)
-// whose cost, interpolated linearly from probes at 1 and 4 iterations, fits the
-// budget; else 1 iteration, saying that even it does not keep up. When `trade`
+// step at kRealtimeStep (or a halving of it, below) with the most iterations
+// (1..kDefaultProjectiveIterations) whose cost, interpolated linearly from probes at 1 and 4
+// iterations, fits the budget; else 1 iteration, saying that even it does not keep up. When `trade`
 // holds measured errors for counts that fit, the fewest iterations whose error
 // is within the reference's resolution of the least among them is taken
 // instead (a quoted error beats an unmeasured guess, and fewer iterations
 // leave the renderer more of the machine), and the note quotes it; otherwise
 // the note says the error is not measured and how to (nothing, when `trade`
 // names no file: nobody looked).
+//
+// With `sound`, the setting must also run through the cloth's first
+// kSoundSeconds: a large step on a fine cloth can land it on a table by a
+// step's fall at once and stretch it over the edge into a divergence (the
+// 256 x 256 drape at 1/60 s). Then the step is halved (up to
+// kMaxStepHalvings times, the iterations chosen again for its doubled cost)
+// until one runs through, and the note says so.
 RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
-                                const SizedTrade& trade = {});
+                                const SizedTrade& trade = {}, const SoundProbe& sound = {});
+
+// Runs a copy of `scene` through its first `seconds` and checks the result as
+// `simulate` does (Simulation::check_result): false when it diverged.
+// Deterministic (the same answer on any machine), unlike measure_cost.
+bool runs_sound(const Scene& scene, double seconds);
 
 // Runs a copy of `scene` for about `wall_seconds` (at most `max_sim_seconds`
 // simulated) after one untimed step (a factorisation, a first contact) and

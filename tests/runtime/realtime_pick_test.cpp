@@ -221,3 +221,86 @@ TEST(RealtimePick, NeverQuotesATradeMeasuredAtAnotherSize) {
 
 }  // namespace
 }  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+// Soundness by setting: a step of `diverges_above` or more diverges.
+struct FakeSound {
+  double diverges_above;
+  mutable std::vector<SolverSettings> asked;
+  bool operator()(const Scene& s) const {
+    asked.push_back(s.solver);
+    return s.solver.dt < diverges_above;
+  }
+};
+
+// A setting that diverges within the cloth's first second at 1/60 s (the
+// 256 x 256 drape lands on the table a whole step's fall at once) is not
+// kept: the step is halved until one runs through, its iterations chosen
+// again for the doubled cost, and the note says why.
+TEST(RealtimePick, HalvesTheStepUntilTheClothRunsThrough) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{100.0, 0.1, 0.14, {}};  // at 1/60 s 4 iterations fit; at 1/120 s only 1
+  FakeSound sound{0.75 * kRealtimeStep, {}};
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs), {}, std::ref(sound));
+  ASSERT_TRUE(pick.switched);
+  EXPECT_DOUBLE_EQ(pick.picked.dt, kRealtimeStep / 2);
+  EXPECT_EQ(pick.picked.iterations, 1);
+  EXPECT_NEAR(pick.picked_cost, 2 * 0.24, 1e-12);
+  ASSERT_EQ(sound.asked.size(), 2u);
+  EXPECT_EQ(sound.asked[0].iterations, 4);
+  EXPECT_DOUBLE_EQ(sound.asked[0].dt, kRealtimeStep);
+  EXPECT_EQ(sound.asked[1].iterations, 1);
+  EXPECT_NE(pick.note.find("projective, 1 iteration, dt 1/120 s"), std::string::npos) << pick.note;
+  EXPECT_NE(pick.note.find("At dt 1/60 s it diverged within the cloth's first 1 s"),
+            std::string::npos)
+      << pick.note;
+  EXPECT_EQ(pick.note.find("expect it to stop"), std::string::npos) << pick.note;
+  EXPECT_NO_THROW(validate(pick.picked));
+}
+
+// Its note's command measures the step it took, not 1/60 s.
+TEST(RealtimePick, AHalvedPickSaysHowToMeasureItsOwnStep) {
+  const SizedTrade trade = find_sized_trade(kDrapeFile, 8, test::scratch_path("none.8.csv"));
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  FakeSound sound{0.75 * kRealtimeStep, {}};
+  const RealtimePick pick =
+      pick_for_real_time(drape_at_8(), std::ref(costs), trade, std::ref(sound));
+  EXPECT_NE(pick.note.find("is not measured; to measure it: neurocloth-cli tradeoff " +
+                           std::string(kDrapeFile) +
+                           " --size 8 --seconds 1 --samples 4 "
+                           "--methods projective --dt 1/120 --projective-iterations"),
+            std::string::npos)
+      << pick.note;
+}
+
+TEST(RealtimePick, SaysWhenNoStepItTriesRunsThrough) {
+  const Scene scene = test::asset_scene("table_drape");
+  FakeCosts costs{100.0, 0.1, 0.14, {}};
+  FakeSound sound{0, {}};  // every step diverges
+  const RealtimePick pick = pick_for_real_time(scene, std::ref(costs), {}, std::ref(sound));
+  EXPECT_EQ(sound.asked.size(), std::size_t(kMaxStepHalvings) + 1);
+  EXPECT_DOUBLE_EQ(pick.picked.dt, kRealtimeStep / 8);
+  EXPECT_NE(pick.note.find("At dt 1/60, 1/120, 1/240, 1/480 s it diverged"), std::string::npos)
+      << pick.note;
+  EXPECT_NE(pick.note.find("no step tried ran through, so expect it to stop"), std::string::npos)
+      << pick.note;
+}
+
+// The probe itself, on a cloth small enough for a test: the 32 x 32 drape at
+// 1/16 s diverges on the table (it has 16 steps in its first second, so only
+// the result's check sees it), at 1/64 s it runs through.
+TEST(RunsSound, SaysWhetherTheFirstSecondDiverges) {
+  Scene scene = test::asset_scene("table_drape");
+  scene.solver.integrator = IntegratorKind::projective;
+  scene.solver.adaptive = false;
+  scene.solver.iterations = 4;
+  scene.solver.dt = 1.0 / 16;
+  EXPECT_FALSE(runs_sound(scene, kSoundSeconds));
+  scene.solver.dt = 1.0 / 64;
+  EXPECT_TRUE(runs_sound(scene, kSoundSeconds));
+}
+
+}  // namespace
+}  // namespace neurocloth

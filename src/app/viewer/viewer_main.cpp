@@ -48,8 +48,11 @@ int run(const ViewerOptions& options) {
     const SizedTrade trade = find_sized_trade(options.scene, *options.size);
     if (!trade.problem.empty())
       std::fprintf(stderr, "neurocloth: %s (not quoted)\n", trade.problem.c_str());
+    // And that it runs through the cloth's first second (a large step can land
+    // a fine cloth on the table and stretch it over the edge into a divergence).
     pick = pick_for_real_time(
-        scene, [](const Scene& s) { return measure_cost(s, 0.4); }, trade);
+        scene, [](const Scene& s) { return measure_cost(s, 0.4); }, trade,
+        [](const Scene& s) { return runs_sound(s, kSoundSeconds); });
     if (pick.switched) {
       scene.solver = pick.picked;
       std::fprintf(stderr, "neurocloth: %s\n", pick.note.c_str());
