@@ -66,6 +66,7 @@ struct Renderer::Impl {
 
   enum Vao {
     cloth_vao,
+    coarse_vao,
     wire_vao,
     springs_vao,
     nodes_vao,
@@ -76,11 +77,11 @@ struct Renderer::Impl {
     kVaoCount
   };
   GLuint vao[kVaoCount] = {};
-  GlBuffer position, normal, strain, triangles, spring_pairs, node_colour;
+  GlBuffer position, normal, strain, triangles, coarse_triangles, spring_pairs, node_colour;
   GlBuffer collider_position, collider_normal, collider_index, overlay, legend_quad, ghost;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
-  std::size_t triangle_indices = 0;
+  std::size_t triangle_indices = 0, coarse_indices = 0;
   std::size_t spring_begin[kSpringFamilyCount + 1] = {};  // index ranges by family
   std::size_t collider_indices = 0;
   bool geometry_uploaded = false;
@@ -111,6 +112,11 @@ struct Renderer::Impl {
     vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
     vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
+    glBindVertexArray(vao[coarse_vao]);
+    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
+    vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
+    vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, coarse_triangles.id());
     glBindVertexArray(vao[wire_vao]);
     vertex_attribute(vertex_slot::position, position, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
@@ -142,8 +148,8 @@ struct Renderer::Impl {
   long allocations() const {
     long n = 0;
     for (const GlBuffer* b :
-         {&position, &normal, &strain, &triangles, &spring_pairs, &node_colour, &collider_position,
-          &collider_normal, &collider_index, &overlay, &legend_quad, &ghost})
+         {&position, &normal, &strain, &triangles, &coarse_triangles, &spring_pairs, &node_colour,
+          &collider_position, &collider_normal, &collider_index, &overlay, &legend_quad, &ghost})
       n += b->allocations();
     return n + grid.allocations();
   }
@@ -163,7 +169,7 @@ struct Renderer::Impl {
 
 void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
   geometry = s.geometry;
-  triangle_indices = 0;
+  triangle_indices = coarse_indices = 0;
   std::fill(std::begin(spring_begin), std::end(spring_begin), 0);
   const std::size_t n = geometry ? geometry->node_count : s.position.size() / 3;
   auto check = [&](std::int32_t i, const char* what) {
@@ -177,6 +183,11 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
         check(i, "triangle");
     triangles.upload(geometry->triangles);
     triangle_indices = 3 * geometry->triangles.size();
+    for (const auto& t : geometry->coarse_triangles)
+      for (const std::int32_t i : t)
+        check(i, "coarse triangle");
+    coarse_triangles.upload(geometry->coarse_triangles);
+    coarse_indices = 3 * geometry->coarse_triangles.size();
     // Springs grouped by family, so each family is one draw in its own colour.
     std::vector<std::uint32_t> pairs;
     pairs.reserve(2 * geometry->spring_a.size());
@@ -271,7 +282,9 @@ void Renderer::Impl::draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f
     set_colour(su.front, palette::kClothFront);
     set_colour(su.back, palette::kClothBack);
     glUniform1i(su.use_strain, o.strain ? 1 : 0);
-    glBindVertexArray(vao[cloth_vao]);
+    const bool coarse = o.max_cloth_triangles > 0 && coarse_indices > 0 &&
+                        triangle_indices / 3 > o.max_cloth_triangles;
+    glBindVertexArray(vao[coarse ? coarse_vao : cloth_vao]);
     // The strain array is only filled when the map is on.
     if (o.strain)
       glEnableVertexAttribArray(vertex_slot::scalar);
@@ -285,7 +298,8 @@ void Renderer::Impl::draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f
     } else {
       glDisable(GL_POLYGON_OFFSET_FILL);
     }
-    glDrawElements(GL_TRIANGLES, GLsizei(triangle_indices), GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, GLsizei(coarse ? coarse_indices : triangle_indices),
+                   GL_UNSIGNED_INT, nullptr);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 }

@@ -24,7 +24,18 @@ struct RenderOptions {
   bool colliders = true;
   bool forces = true;       // applied forces as lines
   float strain_max = 0.1f;  // stretch at the red end of the map (0.1 = 10%)
+  // 0: every triangle of the cloth. Above this many, a grid cloth's surface is
+  // drawn from SceneGeometry::coarse_triangles (every other row and column;
+  // its shading still from every triangle): what the window sets, since on a
+  // software rasteriser the triangles are the frame's cost (docs/rendering.md,
+  // "Large cloths"). Snapshots draw every triangle.
+  std::size_t max_cloth_triangles = 0;
 };
+
+// The window's RenderOptions::max_cloth_triangles: llvmpipe on two cores draws
+// the 128 x 128 cloth (32,258 triangles) at 60 frames/s and 256 x 256 (130,050)
+// at 34 with nothing else running (docs/rendering.md, "Large cloths").
+inline constexpr std::size_t kWindowClothTriangles = 40000;
 
 class Renderer {
  public:

@@ -198,7 +198,11 @@ RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost, const
 }
 
 bool runs_sound(const Scene& scene, double seconds) {
-  Simulation sim = scene.make_simulation();
+  // On as many threads as the machine spares: the bits, and so the answer,
+  // do not depend on them (step_threads.h).
+  Scene copy = scene;
+  copy.solver.threads = batch_step_threads(scene.topology.rest_positions.size());
+  Simulation sim = copy.make_simulation();
   sim.advance(seconds);
   return sim.check_result() == RunStatus::ok;
 }

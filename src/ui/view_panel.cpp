@@ -30,6 +30,13 @@ void view_panel(PanelContext& ctx) {
   ImGui::Checkbox("colliders", &r.colliders);
   ImGui::SameLine();
   ImGui::Checkbox("forces", &r.forces);
+  const SceneGeometry* g = ctx.snapshot.geometry.get();
+  if (g && !g->coarse_triangles.empty() && g->triangles.size() > kWindowClothTriangles) {
+    // A fine grid is drawn on every other row and column unless asked.
+    bool every = r.max_cloth_triangles == 0;
+    if (ImGui::Checkbox("every triangle (slower)", &every))
+      r.max_cloth_triangles = every ? 0 : kWindowClothTriangles;
+  }
 
   double gain = ctx.values.drag_gain;
   if (ImGui::SliderScalar("drag strength, 1/s^2", ImGuiDataType_Double, &gain, &kDragGainMin,

@@ -345,3 +345,67 @@ TEST(Renderer, ReportsTheHeadlessRenderer) {
 
 }  // namespace
 }  // namespace neurocloth
+
+namespace neurocloth {
+namespace {
+
+using namespace render_test;
+
+// A grid cloth above kCoarseGridFrom rows is also triangulated on every other
+// row and column, the last kept, wound as the full one; smaller ones are not.
+TEST(CoarseTriangles, KeepEveryOtherRowAndColumnAndTheLast) {
+  const Scene drape = test::asset_scene("table_drape");
+  EXPECT_TRUE(make_geometry(resized_grid(drape, kCoarseGridFrom))->coarse_triangles.empty());
+  for (const int n : {kCoarseGridFrom + 1, kCoarseGridFrom + 2}) {
+    const Scene big = resized_grid(drape, n);
+    const auto g = make_geometry(big);
+    const int kept = (n + 1) / 2 + (n % 2 == 0);  // 0, 2, ..., and n - 1 when n is even
+    ASSERT_EQ(g->coarse_triangles.size(), std::size_t(2 * (kept - 1) * (kept - 1))) << n;
+    // Same winding: each coarse triangle faces the way the full cloth's first one does.
+    const auto& p = big.topology.rest_positions;
+    auto normal = [&](const std::array<std::int32_t, 3>& t) {
+      return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).normalized();
+    };
+    const Vec3 up = normal(g->triangles.front());
+    double area = 0;
+    for (const auto& t : g->coarse_triangles) {
+      for (const std::int32_t i : t)
+        ASSERT_TRUE(i >= 0 && std::size_t(i) < p.size());
+      EXPECT_GT(normal(t).dot(up), 0.999);
+      area += 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+    }
+    // They cover the whole cloth, no more.
+    const double side = big.grid->spacing * (n - 1);
+    EXPECT_NEAR(area, side * side, 1e-9 * side * side) << n;
+  }
+}
+
+// The window draws a large grid from them: on the flat cloth the frame is the
+// full one's; snapshots (no limit) draw every triangle.
+TEST(CoarseTriangles, DrawTheSameFlatClothAsTheFullMesh) {
+  const Scene big = resized_grid(test::asset_scene("table_drape"), kCoarseGridFrom + 1);
+  Simulation sim = big.make_simulation();
+  FrameSnapshot s;
+  s.geometry = make_geometry(big);
+  capture(sim, s);
+  const Image full = frame(s);
+  RenderOptions limited;
+  limited.max_cloth_triangles = s.geometry->triangles.size() - 1;
+  const Image coarse = frame(s, limited);
+  // Measured: not a pixel apart (flat, every vertex the same normal and tone).
+  EXPECT_EQ(changed_pixels(full, coarse), 0);
+  RenderOptions roomy;
+  roomy.max_cloth_triangles = s.geometry->triangles.size();  // not above it: every triangle
+  EXPECT_EQ(changed_pixels(full, frame(s, roomy)), 0);
+  // And the limited frame is drawn from the coarse triangles: half of them gone
+  // leaves a hole.
+  auto holed = std::make_shared<SceneGeometry>(*s.geometry);
+  holed->coarse_triangles.resize(holed->coarse_triangles.size() / 2);
+  FrameSnapshot h = s;
+  h.geometry = holed;
+  EXPECT_GT(changed_pixels(full, frame(h, limited)), kWidth * kHeight / 50);
+  EXPECT_EQ(changed_pixels(full, frame(h)), 0);
+}
+
+}  // namespace
+}  // namespace neurocloth

@@ -35,6 +35,7 @@ ViewerApp::ViewerApp(ViewerWindow& window, SimulationThread& sim, const Scene& s
                 &report_}) {
   if (scene_info_.fuzzy()) copy_text(values_.rules_path, scene_info_.fuzzy()->rules_path());
   if (script) player_.emplace(std::move(*script));
+  render_.max_cloth_triangles = kWindowClothTriangles;
   window_.attach(handler_, !player_);
 }
 

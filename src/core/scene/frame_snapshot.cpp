@@ -10,6 +10,29 @@ std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene) {
   auto g = std::make_shared<SceneGeometry>();
   g->scene_name = scene.name;
   g->triangles = scene.topology.triangles;
+  if (scene.grid && (scene.grid->rows > kCoarseGridFrom || scene.grid->cols > kCoarseGridFrom)) {
+    auto every_other = [](int count) {
+      std::vector<int> kept;
+      for (int k = 0; k < count; k += 2)
+        kept.push_back(k);
+      if (kept.back() != count - 1) kept.push_back(count - 1);
+      return kept;
+    };
+    const std::vector<int> rows = every_other(scene.grid->rows);
+    const std::vector<int> cols = every_other(scene.grid->cols);
+    const NodeNumbering& numbering = scene.topology.numbering;
+    auto node = [&](int r, int c) {
+      return std::int32_t(numbering.node(r * scene.grid->cols + c));
+    };
+    // Wound as grid_builder's triangles are.
+    for (std::size_t r = 0; r + 1 < rows.size(); ++r)
+      for (std::size_t c = 0; c + 1 < cols.size(); ++c) {
+        const std::int32_t a = node(rows[r], cols[c]), b = node(rows[r], cols[c + 1]);
+        const std::int32_t d = node(rows[r + 1], cols[c]), e = node(rows[r + 1], cols[c + 1]);
+        g->coarse_triangles.push_back({a, d, b});
+        g->coarse_triangles.push_back({b, d, e});
+      }
+  }
   g->node_count = scene.topology.rest_positions.size();
   g->numbering = scene.topology.numbering;
   for (const SpringSpec& s : scene.topology.springs) {

@@ -19,9 +19,16 @@ namespace neurocloth {
 class Scene;
 class Simulation;
 
+inline constexpr int kCoarseGridFrom = 160;
+
 struct SceneGeometry {
   std::string scene_name;
   std::vector<std::array<std::int32_t, 3>> triangles;
+  // A grid cloth of more than kCoarseGridFrom rows or columns on every other
+  // row and column (the last always kept): what a window drawing on the CPU
+  // draws instead of `triangles` when they would cost its frame rate
+  // (RenderOptions::max_cloth_triangles). Empty for meshes and smaller grids.
+  std::vector<std::array<std::int32_t, 3>> coarse_triangles;
   std::vector<std::int32_t> spring_a, spring_b;
   std::vector<SpringFamily> spring_family;
   std::vector<float> rest_length;     // m, per spring (for the strain colour map)
