@@ -40,7 +40,8 @@ struct SetSolver {
   double dt;       // s: the fixed step, or the refresh interval when adaptive
   bool adaptive;   // the paper's propagation (network integrator)
   double safety;   // adaptive: t_c <= safety * stable step bound
-  int iterations;  // projective: local-global iterations per step; vbd: sweeps (the others ignore it)
+  int iterations;  // projective: local-global iterations per step; vbd: sweeps (the others ignore
+                   // it)
   // implicit_euler: its conjugate gradient's relative residual (ignored by the others)
   double linear_tolerance;
 };

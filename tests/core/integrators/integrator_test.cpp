@@ -112,8 +112,7 @@ TEST_P(IntegratorTest, MomentumIsConservedWithoutExternalForces) {
   // Springs act in equal and opposite pairs; the implicit solve is exact only
   // to its CG tolerance, the projective one to the factor's rounding, vbd's
   // (one node at a time) to its sweeps' convergence.
-  const bool solves =
-      GetParam() == IntegratorKind::implicit_euler || iterates_per_step(GetParam());
+  const bool solves = GetParam() == IntegratorKind::implicit_euler || iterates_per_step(GetParam());
   const double tol = solves ? 1e-8 : 1e-12;
   EXPECT_LT((p1 - p0).norm(), tol * p0.norm()) << (p1 - p0).transpose();
   // ... and the cloth really moved and deformed.
@@ -196,9 +195,12 @@ TEST_P(IntegratorTest, ConvergenceOrder) {
   const Scene scene = test::asset_scene("spring_mass");
   const Oscillator osc(scene);
   const std::map<IntegratorKind, std::pair<int, double>> expected = {
-      {IntegratorKind::network, {1, 2e-4}},        {IntegratorKind::explicit_euler, {1, 1e-4}},
-      {IntegratorKind::verlet, {2, 2e-3}},         {IntegratorKind::rk4, {4, 5e-3}},
-      {IntegratorKind::implicit_euler, {1, 2e-4}}, {IntegratorKind::projective, {1, 2e-4}},
+      {IntegratorKind::network, {1, 2e-4}},
+      {IntegratorKind::explicit_euler, {1, 1e-4}},
+      {IntegratorKind::verlet, {2, 2e-3}},
+      {IntegratorKind::rk4, {4, 5e-3}},
+      {IntegratorKind::implicit_euler, {1, 2e-4}},
+      {IntegratorKind::projective, {1, 2e-4}},
       {IntegratorKind::vbd, {1, 2e-4}}};
   const auto [order, dt0] = expected.at(GetParam());
   const double T = 0.5;
