@@ -92,12 +92,10 @@ std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, in
   }
   std::string says = " Its error at " + grid + " is not measured";
   if (!trade.problem.empty()) says += " (" + trade.problem + ")";
-  std::string measure = trade.measure;
-  if (halvings > 0 && !trade.measure_finer.empty()) {
-    measure = trade.measure_finer;
-    measure.replace(measure.find("{}"), 2, step_name(halvings));
-  }
-  if (!measure.empty()) says += "; to measure it: " + measure;
+  if (!trade.measure.empty())
+    says += "; to measure it: " +
+            (halvings == 0 ? trade.measure
+                           : trade.measure_before + step_name(halvings) + trade.measure_after);
   return says + ".";
 }
 
@@ -115,13 +113,11 @@ SizedTrade find_sized_trade(const std::string& scene_path, int n, const std::str
                               : path;
   // The window's settings exactly, against a reference the user can afford
   // (docs/tradeoff.md, "Sized trades": what it cost at 64 and 128).
-  auto command = [&](const std::string& step) {
-    return "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
-           " --seconds 1 --samples 4 --methods projective --dt " + step +
-           " --projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
-  };
-  trade.measure = command(step_name(0));
-  trade.measure_finer = command("{}");
+  trade.measure_before = "neurocloth-cli tradeoff " + scene_path + " --size " + std::to_string(n) +
+                         " --seconds 1 --samples 4 --methods projective --dt ";
+  trade.measure_after =
+      " --projective-iterations " + iterations + " --reference-budget 1200 --out " + out;
+  trade.measure = trade.measure_before + step_name(0) + trade.measure_after;
   std::error_code missing;
   if (!std::filesystem::exists(path, missing)) return trade;
   try {

@@ -23,7 +23,9 @@ struct SizedTrade {
   std::optional<TradeTable> table;  // read from it, its size checked; none: not measured
   std::string problem;              // why a file that is there could not be used
   std::string measure;              // the command that measures it, at kRealtimeStep
-  std::string measure_finer;        // the same at the step a halving pick takes ({} for it)
+  // The same command around its step, for a pick that halved it:
+  // measure_before + "1/120" + measure_after.
+  std::string measure_before, measure_after;
 };
 
 // The trade of `scene_path` resized to n x n, read from `path` when the file
