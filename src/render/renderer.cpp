@@ -107,16 +107,14 @@ struct Renderer::Impl {
     glGenVertexArrays(kVaoCount, vao);
     // Attribute layouts are fixed once: buffers keep their names when they
     // grow, so the vertex arrays stay valid.
-    glBindVertexArray(vao[cloth_vao]);
-    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-    vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
-    vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
-    glBindVertexArray(vao[coarse_vao]);
-    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-    vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
-    vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, coarse_triangles.id());
+    for (const auto& [surface_vao, index] :
+         {std::pair{cloth_vao, &triangles}, std::pair{coarse_vao, &coarse_triangles}}) {
+      glBindVertexArray(vao[surface_vao]);  // the cloth's surface, whole or coarse
+      vertex_attribute(vertex_slot::position, position, 3, 3, 0);
+      vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
+      vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index->id());
+    }
     glBindVertexArray(vao[wire_vao]);
     vertex_attribute(vertex_slot::position, position, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
@@ -178,14 +176,12 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
                                   std::to_string(i) + " of " + std::to_string(n));
   };
   if (geometry) {
-    for (const auto& t : geometry->triangles)
-      for (const std::int32_t i : t)
-        check(i, "triangle");
+    for (const auto* list : {&geometry->triangles, &geometry->coarse_triangles})
+      for (const auto& t : *list)
+        for (const std::int32_t i : t)
+          check(i, "triangle");
     triangles.upload(geometry->triangles);
     triangle_indices = 3 * geometry->triangles.size();
-    for (const auto& t : geometry->coarse_triangles)
-      for (const std::int32_t i : t)
-        check(i, "coarse triangle");
     coarse_triangles.upload(geometry->coarse_triangles);
     coarse_indices = 3 * geometry->coarse_triangles.size();
     // Springs grouped by family, so each family is one draw in its own colour.
