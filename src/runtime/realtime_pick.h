@@ -85,9 +85,10 @@ inline constexpr int kMaxStepHalvings = 3;
 RealtimePick pick_for_real_time(const Scene& scene, const CostProbe& cost,
                                 const SizedTrade& trade = {}, const SoundProbe& sound = {});
 
-// Runs a copy of `scene` through its first `seconds` and checks the result as
-// `simulate` does (Simulation::check_result): false when it diverged.
-// Deterministic (the same answer on any machine), unlike measure_cost.
+// Runs a copy of `scene` through its first `seconds`, checked after every
+// frame (kRealtimeStep, or its step when longer) as the window checks, and its
+// end as `simulate` checks a result (Simulation::check_result): false when it
+// diverged. Deterministic (the same answer on any machine), unlike measure_cost.
 bool runs_sound(const Scene& scene, double seconds);
 
 // Runs a copy of `scene` for about `wall_seconds` (at most `max_sim_seconds`
