@@ -275,9 +275,14 @@ TEST_F(Cli, TradeoffBadInputNamesWhatIsWrong) {
   std::vector<std::string> args = quick_tradeoff(scene_asset("hanging"), report);
   args.insert(args.end(), {"--methods", "network,leapfrog"});
   expect_input_error(args, {"--methods", "leapfrog"});
-  args = quick_tradeoff(scene_asset("hanging"), report);
-  args.insert(args.end(), {"--projective-iterations", "4,0"});
-  expect_input_error(args, {"--projective-iterations", "must be in [1, 1000]"});
+  for (const char* option : {"--projective-iterations", "--vbd-iterations"}) {
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {option, "4,0"});
+    expect_input_error(args, {option, "must be in [1, 1000]"});
+    args = quick_tradeoff(scene_asset("hanging"), report);
+    args.insert(args.end(), {option, "1001"});
+    expect_input_error(args, {option, "must be in [1, 1000]"});
+  }
   for (const char* tolerances : {"1e-6,0", "1e-6,0.5", "1e-15"}) {
     args = quick_tradeoff(scene_asset("hanging"), report);
     args.insert(args.end(), {"--implicit-tolerances", tolerances});
