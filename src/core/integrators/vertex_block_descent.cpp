@@ -235,9 +235,10 @@ class VertexBlockDescent final : public Integrator {
   // the block's energy. The Hessian leaves out a compressed spring's negative
   // transverse part, so the step points downhill, but it is long where the
   // springs about a node are slack (only its mass resists sideways), and there
-  // a full step can climb: without the halving the 32² drape at 1/16 s and 10
-  // sweeps flew apart (docs/tradeoff.md, "Vertex block descent"). Each
-  // accepted step lowers the whole energy, since only node i's terms move.
+  // a full step can climb. Each accepted step lowers the whole energy, since
+  // only node i's terms move; a step still diverges when its sweeps stop far
+  // from the answer, but by kilojoules, not without bound (docs/tradeoff.md,
+  // "Vertex block descent": the 32² drape at 1/16 s and 10 sweeps).
   template <bool Stiffening>
   void relax(std::size_t i, double threshold) {
     const double m = mass_[i];
