@@ -30,7 +30,22 @@ ReferenceMotion parse_reference(const std::string& bytes, const std::string& pat
   return parse_marker_csv(bytes, path, node_count);
 }
 
-ReferenceMotion read_reference(const std::string& path, std::size_t node_count) {
+const char* to_string(ReferenceMotion::Source source) {
+  switch (source) {
+    case ReferenceMotion::Source::recording:
+      return "recording";
+    case ReferenceMotion::Source::markers:
+      return "markers";
+    case ReferenceMotion::Source::cloud:
+      return "point cloud";
+    case ReferenceMotion::Source::cache:
+      return "point cache";
+  }
+  return "?";
+}
+
+ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
+                               const ReferenceOptions& /*options*/) {
   return parse_reference(read_text_file(path, "reference motion", kMaxReferenceBytes), path,
                          node_count);
 }

@@ -1,9 +1,14 @@
 #pragma once
 // Reference motion for learning: what the network's positions are fitted to
-// (paper eq. 18-19). Two sources, one type:
+// (paper eq. 18-19). Four sources, one type:
 //  - a recording (`simulate --record`): every node at every output frame;
 //  - markers (a motion-capture or video-tracking CSV "time,node,x,y,z"): any
-//    subset of nodes per frame, at any increasing times.
+//    subset of nodes per frame, at any increasing times;
+//  - a point cloud: points per frame with no node numbers (a depth camera's
+//    or a scanner's CSV "time,x,y,z", or PLY / XYZ files, one per frame),
+//    compared with the cloth's surface by a Chamfer distance (chamfer.h);
+//  - a point cache of another simulator (PC2 or MDD with its OBJ): every
+//    vertex at every frame, vertex k being node k.
 // Node numbers are the file's (RESULT.json's `positions` index, row * cols + col
 // for a grid), never the network's internal order: the learning stage maps
 // them through the scene's NodeNumbering. Formats: docs/learning.md.
@@ -16,20 +21,41 @@
 
 namespace neurocloth {
 
-// One observed instant: node k of `nodes` was at positions[k] (m).
+// One observed instant: node k of `nodes` was at positions[k] (m). A point
+// cloud's frame has no nodes: `positions` are its points, in no order.
 struct ReferenceFrame {
   double time = 0;                  // s from the scene's start
-  std::vector<std::int32_t> nodes;  // file indices, each once per frame
-  std::vector<Vec3> positions;      // one per entry of `nodes`
+  std::vector<std::int32_t> nodes;  // file indices, each once per frame; empty for a cloud
+  std::vector<Vec3> positions;      // one per entry of `nodes`, or the cloud's points
 };
 
 struct ReferenceMotion {
-  enum class Source { recording, markers };
+  enum class Source { recording, markers, cloud, cache };
   std::string path;
   Source source = Source::recording;
   std::vector<ReferenceFrame> frames;  // strictly increasing times
-  // Observed node positions over all frames (each a 3-vector of data).
+  // What the reader found worth saying (a cache's axes, how its vertices were
+  // matched to the scene's nodes): one line, empty when nothing.
+  std::string note;
+  // Observed positions or points over all frames (each a 3-vector of data).
   std::size_t observations() const;
+  bool is_cloud() const { return source == Source::cloud; }
+};
+
+const char* to_string(ReferenceMotion::Source source);
+
+// What the file alone does not say: the command line's --reference-* options.
+struct ReferenceOptions {
+  // Frames per second of a frame sequence (PLY / XYZ files) or of a PC2
+  // cache (which stores none); 0 when not given. An MDD stores its times.
+  double fps = 0;
+  // The time of the sequence's or cache's first frame, s from the scene's start.
+  double start = 0;
+  // The OBJ mesh a PC2 / MDD cache deforms (its vertex k is the cache's k).
+  std::string mesh;
+  // The scene's initial node positions in file order: a cache's mesh is
+  // matched against them (vertex order first). Empty: not checked.
+  std::vector<Vec3> scene_positions;
 };
 
 // Limits on what a reference file may hold: far above a real capture (2^25
@@ -49,11 +75,14 @@ inline constexpr double kMaxReferenceCoordinate = 1e6;  // m
 // True when every coordinate of `p` is finite and within kMaxReferenceCoordinate.
 bool reference_position_ok(const Vec3& p);
 
-// Reads a recording or a markers CSV, told apart by their first bytes (the
-// recording's magic line, else the CSV). `node_count` is the scene's: every
-// node must be below it, and a recording must hold exactly that many. Throws
-// InputError naming the file, the line (CSV) and the field on any bad input.
-ReferenceMotion read_reference(const std::string& path, std::size_t node_count);
+// Reads a recording or a CSV (markers or a cloud, told apart by the header),
+// told apart by their first bytes (the recording's magic line, else the CSV);
+// a folder or a numbered pattern ("scan_%04d.ply") of PLY / XYZ files; a .pc2
+// or .mdd cache. `node_count` is the scene's: every node must be below it,
+// and a recording or cache must hold exactly that many. Throws InputError
+// naming the file, the line or byte offset and the field on any bad input.
+ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
+                               const ReferenceOptions& options = {});
 // The same on bytes already in memory; `path` names them in messages.
 ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
                                 std::size_t node_count);

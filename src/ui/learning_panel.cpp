@@ -40,7 +40,7 @@ void reference_section(PanelContext& ctx, LearningSession& s) {
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s: %s, %zu frames to %.3g s, %zu observed positions", ref->path.c_str(),
-                     ref->source == ReferenceMotion::Source::recording ? "recording" : "markers",
+                     to_string(ref->source),
                      ref->frames.size(), ref->frames.empty() ? 0.0 : ref->frames.back().time,
                      ref->observations());
   ImGui::PopStyleColor();

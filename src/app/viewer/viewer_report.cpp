@@ -114,7 +114,7 @@ void ViewerReport::learning(const LearningSession& s) {
   if (const auto& ref = s.reference())
     out["reference"] = {
         {"path", ref->path},
-        {"source", ref->source == ReferenceMotion::Source::recording ? "recording" : "markers"},
+        {"source", to_string(ref->source)},
         {"frames", ref->frames.size()},
         {"observations", ref->observations()}};
   else
