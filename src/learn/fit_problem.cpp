@@ -79,6 +79,14 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
     throw InputError(scene.path, "solver", std::string("fit: ") + e.what());
   }
   ObservationPlan obs;
+  std::shared_ptr<const ClothSurface> surface;
+  if (ref.is_cloud()) {
+    if (scene.topology.triangles.empty())
+      throw InputError(ref.path, "points",
+                       "a point cloud is compared with the cloth's triangles, and this scene's "
+                       "cloth has none (a chain)");
+    surface = std::make_shared<const ClothSurface>(scene.topology.triangles, n);
+  }
   for (const ReferenceFrame& f : ref.frames) {
     if (!(f.time >= 0))
       throw InputError(ref.path, "time", "a frame before the scene's start (t < 0)");
@@ -88,6 +96,18 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
         it == steps.start.begin() ? 0 : static_cast<std::size_t>(it - steps.start.begin()) - 1;
     fr.step = std::min(fr.step, steps.count() - 1);
     fr.alpha = std::clamp((f.time - steps.start[fr.step]) / steps.size[fr.step], 0.0, 1.0);
+    if (ref.is_cloud()) {
+      if (f.positions.empty())
+        throw InputError(ref.path, "points",
+                         "the frame at t = " + show_number(f.time) + " s has no points");
+      fr.cloud = static_cast<int>(obs.clouds.size());
+      fr.count = f.positions.size();
+      obs.clouds.push_back(
+          std::make_shared<const ChamferTarget>(f.positions, surface, settings.chamfer));
+      obs.frames.push_back(fr);
+      frame_times.push_back(f.time);
+      continue;
+    }
     fr.first = obs.nodes.size();
     fr.count = f.nodes.size();
     for (std::size_t k = 0; k < f.nodes.size(); ++k) {
@@ -254,7 +274,7 @@ bool FitProblem::reference_state(double t, ClothState& state) const {
   // Frame f observes every node, in the order frame 0 lists them.
   const auto full = [&](std::size_t f) {
     const ObservationPlan::Frame& fr = m.observed.frames[f];
-    if (fr.count != n) return false;
+    if (fr.cloud >= 0 || fr.count != n) return false;  // a cloud names no node
     const ObservationPlan::Frame& first = m.observed.frames[0];
     return first.count == n && std::equal(m.observed.nodes.begin() + std::ptrdiff_t(fr.first),
                                           m.observed.nodes.begin() + std::ptrdiff_t(fr.first + n),
@@ -293,7 +313,10 @@ double FitProblem::rms_error(const Eigen::VectorXd& theta) {
 }
 
 std::size_t FitProblem::observations() const {
-  return impl_->rollout ? impl_->rollout->compared().size() : 0;
+  return impl_->rollout ? impl_->rollout->data_count() : 0;
+}
+bool FitProblem::fits_cloud() const {
+  return !impl_->observed.clouds.empty();
 }
 double FitProblem::duration() const {
   return impl_->duration;

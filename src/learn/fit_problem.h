@@ -17,6 +17,7 @@
 
 #include "core/fuzzy/linguistic_variable.h"
 #include "core/scene/scene.h"
+#include "learn/chamfer.h"
 #include "learn/reference_motion.h"
 
 namespace neurocloth {
@@ -36,6 +37,8 @@ struct FitSettings {
   // The tape's memory budget: above it the forward pass keeps only every K-th
   // state and the backward pass recomputes each segment (rollout.h).
   std::size_t tape_budget_bytes = std::size_t(512) << 20;
+  // How a point cloud's frames are compared with the cloth (chamfer.h).
+  ChamferSettings chamfer;
 };
 
 // One block of theta.
@@ -69,13 +72,15 @@ class FitProblem {
   // The values theta stands for (exp of the log-space blocks), inside the limits.
   Eigen::VectorXd values(const Eigen::VectorXd& theta) const;
 
-  // E(theta) = sum_frames sum_observed 1/2 |p_k(t) - y_k(t)|^2 (m^2), plus the
-  // regulariser; fills `gradient` (dE/dtheta, exact) when not null. NaN when
-  // the forward run produced a non-finite state (then the gradient is NaN too).
+  // E(theta) = sum_frames sum_observed 1/2 |p_k(t) - y_k(t)|^2 (m^2), or a
+  // cloud's Chamfer distance (chamfer.h), plus the regulariser; fills `gradient` (dE/dtheta, exact)
+  // when not null. NaN when the forward run produced a non-finite state (then the gradient is NaN
+  // too).
   double loss(const Eigen::VectorXd& theta, Eigen::VectorXd* gradient);
   // Root-mean-square distance (m) at theta, from the data term alone.
   double rms_error(const Eigen::VectorXd& theta);
-  std::size_t observations() const;  // observed node positions (3-vectors)
+  std::size_t observations() const;  // observed positions or points (3-vectors)
+  bool fits_cloud() const;           // the reference is a point cloud (Chamfer loss)
   double duration() const;           // simulated seconds (the last frame's time)
   // Largest tape (checkpoints and one segment) the last loss() held, bytes.
   std::size_t peak_tape_bytes() const;

@@ -30,6 +30,11 @@ Rollout::Rollout(ClothState initial, StepPlan steps, ObservationPlan observation
   const std::size_t T = steps_.count();
   if (T == 0) throw std::invalid_argument("a rollout needs at least one step");
   compared_.assign(obs_.size(), Vec3::Zero());
+  cloud_loss_.assign(obs_.clouds.size(), 0.0);
+  cloud_gradient_.resize(obs_.clouds.size());
+  for (const ObservationPlan::Frame& f : obs_.frames)
+    if (f.cloud >= 0 && static_cast<std::size_t>(f.cloud) >= obs_.clouds.size())
+      throw std::invalid_argument("an observation names a cloud the plan does not hold");
   frames_of_step_begin_.assign(T + 2, obs_.frames.size());
   for (std::size_t f = obs_.frames.size(); f-- > 0;) {
     if (obs_.frames[f].step >= T) throw std::invalid_argument("an observation after the last step");
@@ -60,6 +65,18 @@ void Rollout::step_forward(const RolloutModel& m, std::size_t k, const ClothStat
 void Rollout::observe(std::size_t k, const ClothState& before, const ClothState& after) {
   for (std::size_t f = frames_of_step_begin_[k]; f < frames_of_step_begin_[k + 1]; ++f) {
     const ObservationPlan::Frame& fr = obs_.frames[f];
+    if (fr.cloud >= 0) {
+      const auto c = static_cast<std::size_t>(fr.cloud);
+      at_frame_.resize(before.size());
+      bool finite = true;
+      for (std::size_t i = 0; i < at_frame_.size(); ++i) {
+        at_frame_[i] = (1.0 - fr.alpha) * before.position(i) + fr.alpha * after.position(i);
+        finite = finite && at_frame_[i].allFinite();
+      }
+      // A k-d tree over NaN says nothing: the run's loss is NaN, as a node's would be.
+      cloud_loss_[c] = finite ? obs_.clouds[c]->loss(at_frame_, cloud_gradient_[c]) : std::nan("");
+      continue;
+    }
     for (std::size_t o = fr.first; o < fr.first + fr.count; ++o) {
       const auto i = static_cast<std::size_t>(obs_.nodes[o]);
       compared_[o] = (1.0 - fr.alpha) * before.position(i) + fr.alpha * after.position(i);
@@ -74,6 +91,15 @@ void Rollout::add_loss_gradient(std::size_t j, ClothState& adj) const {
     const ObservationPlan::Frame& fr = obs_.frames[f];
     const double w = upper ? fr.alpha : 1.0 - fr.alpha;
     if (w == 0.0) return;
+    if (fr.cloud >= 0) {
+      const std::vector<Vec3>& g = cloud_gradient_[static_cast<std::size_t>(fr.cloud)];
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        adj.x[i] += w * g[i].x();
+        adj.y[i] += w * g[i].y();
+        adj.z[i] += w * g[i].z();
+      }
+      return;
+    }
     for (std::size_t o = fr.first; o < fr.first + fr.count; ++o) {
       const auto i = static_cast<std::size_t>(obs_.nodes[o]);
       const Vec3 r = w * (compared_[o] - obs_.targets[o]);
@@ -202,6 +228,8 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   double E = 0;
   for (std::size_t o = 0; o < obs_.size(); ++o)
     E += 0.5 * (compared_[o] - obs_.targets[o]).squaredNorm();
+  for (double e : cloud_loss_)
+    E += e;
   if (!g) return E;
 
   // Backward.
@@ -235,12 +263,24 @@ StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count) {
   return w;
 }
 
+std::size_t ObservationPlan::data_count() const {
+  std::size_t n = nodes.size();
+  for (const auto& c : clouds)
+    n += c->size();
+  return n;
+}
+
 ObservationPlan window_of(const ObservationPlan& obs, std::size_t first, std::size_t count) {
   ObservationPlan w;
+  w.clouds = obs.clouds;
   for (const ObservationPlan::Frame& f : obs.frames) {
     if (f.step < first || f.step >= first + count) continue;
     ObservationPlan::Frame g = f;
     g.step -= first;
+    if (f.cloud >= 0) {  // the window keeps its clouds' numbers
+      w.frames.push_back(g);
+      continue;
+    }
     g.first = w.nodes.size();
     w.nodes.insert(w.nodes.end(), obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first),
                    obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first + f.count));

@@ -15,6 +15,7 @@
 
 #include "core/network/cloth_network.h"
 #include "core/network/spring_adjoint.h"
+#include "learn/frame_loss.h"
 
 namespace neurocloth {
 
@@ -42,16 +43,22 @@ struct StepPlan {
 // states after step k-1 and k+1 (t_k <= t <= t_k+1) is compared with
 // (1 - alpha) p_k + alpha p_k+1, alpha = (t - t_k) / h_k: the position at the
 // frame's own time, not at the nearest step.
+// A point cloud's frame is compared with the whole cloth at that time by its
+// own loss (frame_loss.h), with the same interpolation.
 struct ObservationPlan {
   struct Frame {
     std::size_t step = 0;  // k: the frame lies in step k (states k and k+1)
     double alpha = 0;
-    std::size_t first = 0, count = 0;  // its observations in nodes / targets
+    std::size_t first = 0, count = 0;  // its observations in nodes / targets (a cloud: its points)
+    int cloud = -1;                    // a frame compared as a whole: clouds[cloud]
   };
   std::vector<Frame> frames;        // in time order
   std::vector<std::int32_t> nodes;  // network nodes
   std::vector<Vec3> targets;        // measured positions, m
-  std::size_t size() const { return nodes.size(); }
+  std::vector<std::shared_ptr<const FrameLoss>> clouds;
+  std::size_t size() const { return nodes.size(); }  // node observations
+  // Observed 3-vectors: node observations and clouds' points.
+  std::size_t data_count() const;
 };
 
 // dE/d(weight) in the network's order, and dE/d(module parameter) per module
@@ -76,8 +83,10 @@ class Rollout {
 
   // The state after the last step of the last run.
   const ClothState& final_state() const { return final_; }
-  // The positions compared with each observation at the last run (m).
+  // The positions compared with each node observation at the last run (m).
   const std::vector<Vec3>& compared() const { return compared_; }
+  // Observed 3-vectors (node observations and clouds' points).
+  std::size_t data_count() const { return obs_.data_count(); }
   // Largest memory the tape held in a run so far (checkpoints + a segment), bytes.
   std::size_t peak_tape_bytes() const { return peak_bytes_; }
   // Steps per recomputed segment (the step count when everything fits).
@@ -100,6 +109,11 @@ class Rollout {
   std::size_t segment_ = 0;
   std::size_t peak_bytes_ = 0;
   std::vector<Vec3> compared_;
+  // Per cloud: its loss and dE/dp at the last run, and every node's position
+  // at a cloud's time (scratch).
+  std::vector<double> cloud_loss_;
+  std::vector<std::vector<Vec3>> cloud_gradient_;
+  std::vector<Vec3> at_frame_;
   ClothState final_;
   // For each step, the frames that compare states k and k+1.
   std::vector<std::size_t> frames_of_step_begin_;

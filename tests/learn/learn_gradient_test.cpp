@@ -364,5 +364,43 @@ TEST(LearnRollout, CheckpointedSegmentsGiveTheSameGradientInLessMemory) {
   EXPECT_LT(b.peak_tape_bytes() * 4, a.peak_tape_bytes());
 }
 
+// A point cloud's Chamfer distance (chamfer.h) through the whole run: random
+// points near the cloth's rest surface, falling, at frames between steps.
+ReferenceMotion scattered_cloud(const Scene& scene, double seconds, int frames) {
+  ReferenceMotion ref;
+  ref.path = "synthetic cloud";
+  ref.source = ReferenceMotion::Source::cloud;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02), unit(0, 1);
+  const auto& rest = scene.topology.rest_positions;
+  for (int f = 1; f <= frames; ++f) {
+    ReferenceFrame fr;
+    fr.time = seconds * (f - 0.37 * (f < frames)) / frames;
+    for (int k = 0; k < 40; ++k) {
+      const Vec3 a = rest[rng() % rest.size()], b = rest[rng() % rest.size()];
+      fr.positions.push_back(a + unit(rng) * (b - a) +
+                             Vec3(jitter(rng), jitter(rng) - 0.3 * fr.time, jitter(rng)));
+    }
+    ref.frames.push_back(fr);
+  }
+  return ref;
+}
+
+TEST(LearnGradient, APointCloudsChamferDistanceEveryOption) {
+  const Scene scene = hanging_scene();
+  for (bool one_sided : {false, true})
+    for (RobustLoss robust : {RobustLoss::none, RobustLoss::cauchy}) {
+      SCOPED_TRACE(std::string(one_sided ? "one-sided " : "two-sided ") + to_string(robust));
+      FitSettings s;
+      s.params = {"spring_constant", "viscosity", "node_mass", "air_drag.rate"};
+      s.chamfer.one_sided = one_sided;
+      s.chamfer.robust = robust;
+      FitProblem p(scene, scattered_cloud(scene, 0.3, 5), s);
+      EXPECT_TRUE(p.fits_cloud());
+      EXPECT_EQ(p.observations(), 5u * 40u);
+      expect_exact_gradient(p, all_of(p));
+    }
+}
+
 }  // namespace
 }  // namespace neurocloth

@@ -14,6 +14,7 @@
 #include "learn/input_starts.h"
 #include "learn/optimizer.h"
 #include "support/recorded_reference.h"
+#include "support/sampled_cloud.h"
 #include "support/scene_builder.h"
 
 namespace neurocloth {
@@ -204,6 +205,106 @@ TEST(LearnRecovery, PerElementFitFindsAPlantedStiffBand) {
     EXPECT_LT(recovery_error(v, k), 2.5e-2) << v;
   // Every band spring stands out from every other spring.
   EXPECT_GT(in.front(), out.back());
+}
+
+// A point cloud with no node numbers, as a depth camera sees the cloth: 300
+// random points of its surface per frame (not its nodes) with 1 mm of noise,
+// and none from a third of the cloth the camera does not see. The cloth
+// starts flat, pinned at two corners of one edge, and swings down: a motion
+// whose shape, not only its outline, moves.
+SceneBuilder swinging_cloth(double k, double viscosity) {
+  SceneBuilder b(9, 9, 0.04);
+  b.pins(nlohmann::json::array({{0, 0}, {0, 8}})).material(k, 0.004, viscosity);
+  b.set("/material/shear_constant", 20.0).set("/material/bend_constant", 4.0);
+  b.solver("network", 0.001);
+  return b;
+}
+
+struct CloudFit {
+  bool one_sided = false;
+  bool hide = false;         // no points from the first three columns
+  std::size_t outliers = 0;  // per frame, of 300
+  RobustLoss robust = RobustLoss::none;
+};
+
+// The fitted values over the true ones.
+Eigen::Vector2d fit_to_cloud(const CloudFit& o) {
+  const double k = 120.0, c = 0.06;
+  const Scene truth = swinging_cloth(k, c).parse();
+  Simulation sim = truth.make_simulation();
+  test::CloudSampling sampling;
+  sampling.points = 300 - o.outliers;
+  sampling.outliers = o.outliers;
+  sampling.noise = 1e-3;
+  // The triangles of the first three columns (8 squares of 2 triangles a row).
+  if (o.hide) sampling.hidden = [](std::size_t t) { return (t / 2) % 8 < 3; };
+  const ReferenceMotion ref =
+      test::sampled_cloud(sim, truth.topology.triangles, 0.5, 0.01, sampling);
+  const Scene start = swinging_cloth(k / 3, 3 * c).parse();
+  FitSettings s;
+  s.chamfer.one_sided = o.one_sided;
+  s.chamfer.robust = o.robust;
+  s.chamfer.scale = 0.005;
+  FitProblem problem(start, ref, s);
+  const Fit f = fit(problem, problem.initial());
+  std::printf(
+      "  %s%s, %zu outliers, %s: k %.6g N/m (true %g), viscosity %.6g N s/m (true %g); "
+      "off by %.2g and %.2g\n",
+      o.one_sided ? "one-sided" : "two-sided", o.hide ? ", a third hidden" : "", o.outliers,
+      to_string(o.robust), f.values[0], k, f.values[1], c, recovery_error(f.values[0], k),
+      recovery_error(f.values[1], c));
+  return {f.values[0] / k, f.values[1] / c};
+}
+
+// Issue 28 asks for 2% on both; each bound is a small margin over what was
+// measured (the viscosity's ~1% is the 1 mm noise's share).
+TEST(LearnRecovery, APointCloudWithNoiseAndAHiddenThird) {
+  CloudFit o;
+  o.one_sided = o.hide = true;
+  const Eigen::Vector2d f = fit_to_cloud(o);
+  // Measured: off by 4.7e-4 and 9.2e-3.
+  EXPECT_LT(std::abs(f[0] - 1), 1e-3);
+  EXPECT_LT(std::abs(f[1] - 1), 1.1e-2);
+}
+
+TEST(LearnRecovery, AWholePointCloudTwoSided) {
+  const Eigen::Vector2d f = fit_to_cloud({});
+  // Measured: off by 2.3e-3 and 1.1e-2.
+  EXPECT_LT(std::abs(f[0] - 1), 3e-3);
+  EXPECT_LT(std::abs(f[1] - 1), 1.3e-2);
+}
+
+// What the one-sided term is for: with a third of the cloth unseen, the
+// cloth-to-cloud term pulls that third onto what was seen, and the fit finds
+// another cloth.
+TEST(LearnRecovery, TheTwoSidedTermIsMisledByAHiddenThird) {
+  CloudFit o;
+  o.hide = true;
+  const Eigen::Vector2d f = fit_to_cloud(o);
+  // Measured: off by 7.5e-2 and 1.0 (the viscosity falls to 1e-6 N s/m).
+  EXPECT_GT(std::abs(f[0] - 1), 0.05);
+  EXPECT_GT(std::abs(f[1] - 1), 0.5);
+}
+
+// 5% of each frame's points anywhere in a box 0.2 m around the cloth: the
+// squared distance lets them pull the fit off; Huber and Cauchy do not.
+TEST(LearnRecovery, APointCloudWithOutliersUnderARobustLoss) {
+  CloudFit o;
+  o.one_sided = true;
+  o.outliers = 15;
+  const Eigen::Vector2d plain = fit_to_cloud(o);
+  // Measured: off by 4.5e-2 and 0.23.
+  EXPECT_GT(std::abs(plain[1] - 1), 0.15);
+  o.robust = RobustLoss::huber;
+  const Eigen::Vector2d huber = fit_to_cloud(o);
+  // Measured: off by 8.7e-4 and 4.3e-3.
+  EXPECT_LT(std::abs(huber[0] - 1), 1.2e-3);
+  EXPECT_LT(std::abs(huber[1] - 1), 5e-3);
+  o.robust = RobustLoss::cauchy;
+  const Eigen::Vector2d cauchy = fit_to_cloud(o);
+  // Measured: off by 3.3e-4 and 1.2e-2.
+  EXPECT_LT(std::abs(cauchy[0] - 1), 5e-4);
+  EXPECT_LT(std::abs(cauchy[1] - 1), 1.3e-2);
 }
 
 }  // namespace
