@@ -165,9 +165,24 @@ int main(int argc, char** argv) {
   fit_cmd->add_option("scene", fit.scene, "Scene file (JSON)")->required();
   fit_cmd
       ->add_option("--reference", fit.reference,
-                   "The motion to fit: a recording (simulate --record) or a marker CSV "
-                   "(time,node,x,y,z)")
+                   "The motion to fit: a recording (simulate --record), a marker CSV "
+                   "(time,node,x,y,z), a point cloud (CSV time,x,y,z; a folder or a numbered "
+                   "pattern of PLY / XYZ files), or a PC2 / MDD point cache")
       ->required();
+  fit_cmd->add_option("--reference-fps", fit.reference_fps,
+                      "Frames per second of PLY / XYZ frames or of a PC2 cache");
+  fit_cmd->add_option("--reference-start", fit.reference_start,
+                      "Time of the reference's first frame, s (PLY / XYZ frames, caches; default 0)");
+  fit_cmd->add_option("--reference-mesh", fit.reference_mesh,
+                      "The OBJ a PC2 / MDD cache deforms (its vertex k is node k)");
+  fit_cmd->add_option("--chamfer", fit.chamfer,
+                      "A point cloud's distance: two-sided (default) or one-sided (only the "
+                      "points' own distances: a camera that sees part of the cloth)");
+  fit_cmd->add_option("--robust", fit.robust,
+                      "A point cloud's loss: none (squared distance, default), huber or cauchy "
+                      "(outliers pull no harder than a point --robust-scale off)");
+  fit_cmd->add_option("--robust-scale", fit.robust_scale,
+                      "Where a robust loss stops growing as the square, m (default 0.01)");
   fit_cmd
       ->add_option("--params", fit.params,
                    "What to fit, comma-separated (default spring_constant,viscosity; "

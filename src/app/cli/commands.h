@@ -157,7 +157,13 @@ int run_snapshot(const SnapshotOptions& options);
 // written); 1 bad input (nothing written).
 struct FitOptions {
   std::string scene;
-  std::string reference;            // --reference: a recording or a marker CSV
+  std::string reference;            // --reference: a recording, a CSV, PLY/XYZ frames, a cache
+  double reference_fps = 0;         // --reference-fps: a frame sequence's or a PC2's rate
+  double reference_start = 0;       // --reference-start: the first frame's time, s
+  std::string reference_mesh;       // --reference-mesh: the OBJ a PC2 / MDD cache deforms
+  std::string chamfer = "two-sided";  // --chamfer two-sided | one-sided (point clouds)
+  std::string robust = "none";        // --robust none | huber | cauchy (point clouds)
+  double robust_scale = 0.01;         // --robust-scale, m
   std::vector<std::string> params;  // --params a,b,...; empty: spring_constant, viscosity
   bool per_element = false;         // --per-element
   double smoothness = 0;            // --smoothness: the per-element regulariser's strength

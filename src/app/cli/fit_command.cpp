@@ -14,6 +14,7 @@
 #include "chart/loglog_chart.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
+#include "learn/chamfer.h"
 #include "learn/fit_problem.h"
 #include "learn/fitted_output.h"
 #include "learn/input_starts.h"
@@ -44,13 +45,24 @@ OptimizerMethod check_options(const FitOptions& o) {
     refuse("--smoothness", "an online fit has no regulariser: drop --smoothness or --online");
   if (!(o.tape_budget_mb > 0) || !(o.tape_budget_mb < 1e9))
     refuse("--tape-budget", "must be a number of MB > 0");
+  if (!(o.reference_fps >= 0) || !(o.reference_fps <= 1e6))
+    refuse("--reference-fps", "must be a number of frames per second in (0, 1e6]");
+  if (!std::isfinite(o.reference_start) || !(o.reference_start >= 0))
+    refuse("--reference-start", "must be a finite number of seconds >= 0");
+  if (o.chamfer != "two-sided" && o.chamfer != "one-sided")
+    refuse("--chamfer", "unknown distance '" + o.chamfer + "' (expected two-sided or one-sided)");
+  RobustLoss robust{};
+  if (!parse_robust_loss(o.robust, robust))
+    refuse("--robust", "unknown loss '" + o.robust + "' (expected none, huber or cauchy)");
+  if (!(o.robust_scale > 0) || !(o.robust_scale <= 1e3))
+    refuse("--robust-scale", "must be a distance in m in (0, 1000]");
   if (o.out.empty()) refuse("--out", "must name the FITTED.json to write");
   const std::filesystem::path folder = std::filesystem::absolute(o.out).parent_path();
   if (!std::filesystem::is_directory(folder))
     refuse("--out", "the folder " + folder.string() + " does not exist");
   const FittedFiles files = fitted_file_names(o.out);
   for (const std::string& f : {files.scene, files.weights, files.csv, files.png, files.example})
-    check_output_path("--out", f, {o.scene, o.reference});
+    check_output_path("--out", f, {o.scene, o.reference, o.reference_mesh});
   return method;
 }
 
@@ -166,12 +178,34 @@ int exit_code(StopReason reason) {
 
 }  // namespace
 
+namespace {
+
+// Where each file node starts: what a point cache's mesh is matched against.
+std::vector<Vec3> scene_positions_in_file_order(const Scene& scene) {
+  const ClothState start = scene.initial_state();
+  std::vector<Vec3> p(start.size());
+  for (std::size_t k = 0; k < p.size(); ++k)
+    p[k] = start.position(static_cast<std::size_t>(scene.topology.numbering.node(int(k))));
+  return p;
+}
+
+}  // namespace
+
 // Checks the outputs against the scene's inputs first (check_fit_outputs).
 FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   check_fit_outputs(o, scene);
+  ReferenceOptions ro;
+  ro.fps = o.reference_fps;
+  ro.start = o.reference_start;
+  ro.mesh = o.reference_mesh;
+  ro.scene_positions = scene_positions_in_file_order(scene);
   const ReferenceMotion reference =
-      read_reference(o.reference, scene.topology.rest_positions.size());
+      read_reference(o.reference, scene.topology.rest_positions.size(), ro);
+  if (!reference.note.empty()) std::printf("reference: %s\n", reference.note.c_str());
   FitSettings settings;
+  settings.chamfer.one_sided = o.chamfer == "one-sided";
+  parse_robust_loss(o.robust, settings.chamfer.robust);
+  settings.chamfer.scale = o.robust_scale;
   if (!o.params.empty()) settings.params = o.params;
   settings.per_element = o.per_element;
   settings.smoothness = o.smoothness;
@@ -206,8 +240,9 @@ int run_fit(const FitOptions& o) {
   FitProblem problem = load_fit_problem(o, scene);
   const std::vector<Column> columns = columns_of(problem);
   const double observations = double(problem.observations());
-  std::printf("fit: %s to %s: %zu unknowns, %zu observed positions over %g s, %s\n",
+  std::printf("fit: %s to %s: %zu unknowns, %zu observed %s over %g s, %s\n",
               scene.name.c_str(), o.reference.c_str(), problem.size(), problem.observations(),
+              problem.fits_cloud() ? "points (Chamfer distance)" : "positions",
               problem.duration(), to_string(opt.method));
   std::fflush(stdout);
 
@@ -257,8 +292,11 @@ int run_fit(const FitOptions& o) {
   if (result.reason == StopReason::stopped) {
     uncertainty.skipped = "not estimated: the fit was interrupted";
   } else {
-    uncertainty = estimate_uncertainty(objective, best, result.best_loss,
-                                       3 * problem.observations(), unknowns_of(problem));
+    // A point's distance to the surface is one number (along the normal); a
+    // node's offset from its marker is three.
+    const std::size_t residuals = (problem.fits_cloud() ? 1 : 3) * problem.observations();
+    uncertainty = estimate_uncertainty(objective, best, result.best_loss, residuals,
+                                       unknowns_of(problem));
     if (!uncertainty.computed && uncertainty.skipped.empty()) uncertainty.skipped = "not estimated";
   }
   print_uncertainty(uncertainty, problem);
