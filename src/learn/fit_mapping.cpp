@@ -83,11 +83,26 @@ void FitProblem::Impl::apply(const Eigen::VectorXd& theta) {
       auto at = changed_constraints.try_emplace(
           u.declaration, scene.modules[static_cast<std::size_t>(u.declaration)]);
       set_spec_parameter(at.first->second.spec, u.id, value(0));
+    } else if (u.target == Target::path) {
+      auto at = changed_constraints.try_emplace(
+          u.declaration, scene.modules[static_cast<std::size_t>(u.declaration)]);
+      auto& keys = std::get<PinMotionSpec>(at.first->second.spec).keyframes;
+      for (std::size_t j = 0; j < u.keys.size(); ++j)
+        for (int axis = 0; axis < 3; ++axis)
+          keys[u.keys[j]].second[axis] =
+              theta[static_cast<Eigen::Index>(u.block.offset + 3 * j + std::size_t(axis))];
+    } else if (u.target == Target::initial_velocity) {
+      const auto o = static_cast<Eigen::Index>(u.block.offset);
+      const Vec3 v(theta[o], theta[o + 1], theta[o + 2]);
+      ClothState s0 = start;
+      for (std::size_t i = 0; i < s0.size(); ++i)
+        if (b.masses.free[i] != 0) s0.set_velocity(i, v);
+      if (rollout) rollout->set_initial(s0);
     }
   }
   // Constraints have no clone(): the scene's declaration, changed and rebuilt.
   for (const Unknown& u : unknowns)
-    if (u.target == Target::constraint) {
+    if (u.target == Target::constraint || u.target == Target::path) {
       ModuleSet one = build_modules({changed_constraints.at(u.declaration)}, scene.topology);
       model.constraints[static_cast<std::size_t>(u.module)] = std::move(one.constraints.front());
     }
@@ -122,10 +137,49 @@ void FitProblem::Impl::zero_outside(const Eigen::VectorXd& theta, const Eigen::V
     if (in[i] != theta[i]) gradient[i] = 0;
 }
 
+// A path's offsets, every keyframe's (the fixed first one's from the scene),
+// and where each fitted one sits in theta (-1: fixed).
+namespace {
+void path_offsets(const Unknown& u, const Scene& scene, const Eigen::VectorXd& theta,
+                  std::vector<Vec3>& offsets, std::vector<Eigen::Index>& at) {
+  const auto& keys =
+      std::get<PinMotionSpec>(scene.modules[static_cast<std::size_t>(u.declaration)].spec)
+          .keyframes;
+  offsets.clear();
+  at.assign(keys.size(), -1);
+  for (const auto& k : keys)
+    offsets.push_back(k.second);
+  for (std::size_t j = 0; j < u.keys.size(); ++j) {
+    at[u.keys[j]] = static_cast<Eigen::Index>(u.block.offset + 3 * j);
+    offsets[u.keys[j]] = theta.segment<3>(at[u.keys[j]]);
+  }
+}
+}  // namespace
+
 double FitProblem::Impl::regulariser(const Eigen::VectorXd& theta, Eigen::VectorXd* grad) const {
-  const double s = settings.smoothness;
-  if (!(s > 0)) return 0;
   double r = 0;
+  // A path: its second differences over the keyframes (a jerk costs, a
+  // straight line at constant speed does not).
+  const double sp = settings.path_smoothness;
+  if (sp > 0) {
+    std::vector<Vec3> o;
+    std::vector<Eigen::Index> at;
+    for (const Unknown& u : unknowns) {
+      if (u.target != Target::path) continue;
+      path_offsets(u, scene, theta, o, at);
+      for (std::size_t k = 1; k + 1 < o.size(); ++k) {
+        const Vec3 d = o[k - 1] - 2 * o[k] + o[k + 1];
+        r += 0.5 * sp * d.squaredNorm();
+        if (!grad) continue;
+        const std::size_t idx[3] = {k - 1, k, k + 1};
+        const double w[3] = {1, -2, 1};
+        for (int q = 0; q < 3; ++q)
+          if (at[idx[q]] >= 0) grad->segment<3>(at[idx[q]]) += sp * w[q] * d;
+      }
+    }
+  }
+  const double s = settings.smoothness;
+  if (!(s > 0)) return r;
   for (const Unknown& u : unknowns)
     for (const auto& [i, j] : u.neighbours) {
       const auto a = static_cast<Eigen::Index>(u.block.offset + static_cast<std::size_t>(i));
@@ -177,10 +231,30 @@ void FitProblem::Impl::chain(const Eigen::VectorXd& theta, Eigen::VectorXd& grad
           break;
       }
     }
+    if (u.target == Target::path) {
+      const std::vector<double>& d = g.constraints[static_cast<std::size_t>(u.module)];
+      for (std::size_t j = 0; j < u.keys.size(); ++j)
+        for (std::size_t axis = 0; axis < 3; ++axis)
+          grad[static_cast<Eigen::Index>(u.block.offset + 3 * j + axis)] =
+              d[kModuleParameterSlots + 3 * u.keys[j] + axis];
+      continue;
+    }
+    if (u.target == Target::initial_velocity) {
+      // A window (online) starts from the running cloth: no initial state to move.
+      if (g.initial.size() != net.node_count()) continue;
+      for (std::size_t i = 0; i < net.node_count(); ++i)
+        if (net.masses.free[i] != 0) {
+          grad[at(0)] += g.initial.vx[i];
+          grad[at(0) + 1] += g.initial.vy[i];
+          grad[at(0) + 2] += g.initial.vz[i];
+        }
+      continue;
+    }
     if (u.target == Target::force_module || u.target == Target::constraint) {
-      const auto& slots = u.target == Target::force_module ? g.force_modules : g.constraints;
-      const double d = slots[static_cast<std::size_t>(u.module)]
-                            [static_cast<std::size_t>(module_slot(u.id.parameter, u.id.axis))];
+      const auto m = static_cast<std::size_t>(u.module);
+      const auto slot = static_cast<std::size_t>(module_slot(u.id.parameter, u.id.axis));
+      const double d =
+          u.target == Target::force_module ? g.force_modules[m][slot] : g.constraints[m][slot];
       grad[at(0)] = u.block.log_space ? d * std::exp(theta[at(0)]) : d;
     }
   }

@@ -131,6 +131,54 @@ void FitProblem::Impl::add_input(const std::string& name) {
   unknowns.push_back(std::move(u));
 }
 
+// The built constraint a declaration made: constraints were sorted by phase.
+int FitProblem::Impl::constraint_of(int declaration) const {
+  ModuleSet one =
+      build_modules({scene.modules[static_cast<std::size_t>(declaration)]}, scene.topology);
+  for (std::size_t c = 0; c < base.constraints.size(); ++c)
+    if (base.constraints[c]->declaration == one.constraints.front()->declaration &&
+        base.constraints[c]->type() == std::string(one.constraints.front()->type()))
+      return static_cast<int>(c);
+  return -1;
+}
+
+void FitProblem::Impl::add_path(const std::string& name, int declaration) {
+  const ModuleDeclaration& d = scene.modules[static_cast<std::size_t>(declaration)];
+  const auto* spec = std::get_if<PinMotionSpec>(&d.spec);
+  if (!spec || spec->keyframes.empty())
+    refuse("'" + name + "': a path is fitted through a pin_motion's keyframes" +
+           (spec ? " (this one is a sine: give it keyframes)" : ""));
+  Unknown u;
+  u.target = Target::path;
+  u.declaration = declaration;
+  u.module = constraint_of(declaration);
+  for (std::size_t k = 0; k < spec->keyframes.size(); ++k) {
+    if (k == 0 && spec->keyframes[0].first <= 0) continue;  // where the pins start
+    u.keys.push_back(k);
+    for (int axis = 0; axis < 3; ++axis)
+      u.starts.push_back(spec->keyframes[k].second[axis]);
+  }
+  if (u.keys.empty())
+    refuse("'" + name + "': its only keyframe is at t = 0, where the pins start: nothing to fit");
+  u.block = {name, size, u.starts.size(), false, "m"};
+  u.low = -1e4;  // the scene's limit on an offset (docs/scenes.md, pin_motion)
+  u.high = 1e4;
+  size += u.block.count;
+  unknowns.push_back(std::move(u));
+}
+
+void FitProblem::Impl::add_initial_velocity() {
+  Unknown u;
+  u.target = Target::initial_velocity;
+  u.block = {"initial_velocity", size, 3, false, "m/s"};
+  u.starts = {scene.initial_velocity.x(), scene.initial_velocity.y(), scene.initial_velocity.z()};
+  u.low = limits::kSpeed.low;
+  u.high = limits::kSpeed.high;
+  size += 3;
+  unknowns.push_back(std::move(u));
+  gradients.want_initial = true;
+}
+
 void FitProblem::Impl::parse_parameters() {
   const ClothNetwork& net = base.net;
   const Material& mat = scene.material;
@@ -196,6 +244,8 @@ void FitProblem::Impl::parse_parameters() {
       add_family(name, Target::friction, all_nodes, mat.friction, "", false);
     } else if (name.rfind("input.", 0) == 0) {
       add_input(name);
+    } else if (name == "initial_velocity") {
+      add_initial_velocity();
     } else {
       // MODULE.PARAMETER: the module named as the window names it ("wind", "wind[1]").
       const auto dot = name.find('.');
@@ -204,13 +254,18 @@ void FitProblem::Impl::parse_parameters() {
         for (std::size_t d = 0; d < module_names.modules.size(); ++d)
           if (module_name(module_names, static_cast<int>(d)) == name.substr(0, dot))
             declaration = static_cast<int>(d);
+      if (declaration >= 0 && name.substr(dot + 1) == "keyframes") {
+        add_path(name, declaration);
+        continue;
+      }
       ModuleParameterName p{};
       if (declaration < 0 || !parse_module_parameter(name.substr(dot + 1), p))
         refuse("unknown parameter '" + name +
                "' (fit knows spring_constant, shear_constant, bend_constant, viscosity, node_mass, "
                "rest_length, friction, module parameters such as wind.velocity.x, wind.drag, "
-               "wind.lift, air_drag.rate, plane.friction, and a material in words' inputs as "
-               "input.NAME)");
+               "wind.lift, air_drag.rate, plane.friction, a material in words' inputs as "
+               "input.NAME, a pin_motion's keyframes as pin_motion.keyframes, and "
+               "initial_velocity)");
       // Find the built module of that declaration: force modules keep
       // declaration order; constraints were sorted by phase.
       Unknown u;
@@ -230,13 +285,7 @@ void FitProblem::Impl::parse_parameters() {
         value = base.net.force_modules[static_cast<std::size_t>(index)]->parameter(u.id);
       } else {
         u.target = Target::constraint;
-        // The index-th constraint by declaration: find it after the sort.
-        ModuleSet one =
-            build_modules({scene.modules[static_cast<std::size_t>(declaration)]}, scene.topology);
-        for (std::size_t c = 0; c < base.constraints.size(); ++c)
-          if (base.constraints[c]->declaration == one.constraints.front()->declaration &&
-              base.constraints[c]->type() == std::string(one.constraints.front()->type()))
-            u.module = static_cast<int>(c);
+        u.module = constraint_of(declaration);
         if (u.module >= 0)
           value = base.constraints[static_cast<std::size_t>(u.module)]->parameter(u.id);
       }

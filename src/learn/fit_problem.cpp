@@ -136,7 +136,10 @@ FitProblem::FitProblem(const Scene& scene, const ReferenceMotion& reference,
   m.settings = settings;
   if (!(settings.smoothness >= 0) || !std::isfinite(settings.smoothness))
     throw InputError("command line", "--smoothness", "must be a finite number >= 0");
+  if (!(settings.path_smoothness >= 0) || !std::isfinite(settings.path_smoothness))
+    throw InputError("command line", "--path-smoothness", "must be a finite number >= 0");
   m.build_model();
+  m.start = scene.initial_state();
   m.plan(reference);
   m.parse_parameters();
   // A per-element weight of 0 (a side file may hold one: a spring without
@@ -175,6 +178,10 @@ Eigen::VectorXd FitProblem::initial() const {
   const ClothNetwork& net = impl_->base.net;
   for (const Unknown& u : impl_->unknowns) {
     for (std::size_t e = 0; e < u.block.count; ++e) {
+      if (!u.starts.empty()) {  // plain numbers: a path, a velocity
+        theta[static_cast<Eigen::Index>(u.block.offset + e)] = u.starts[e];
+        continue;
+      }
       double v = u.base;
       if (u.per_element) {
         const auto k = static_cast<std::size_t>(u.elements[e]);
@@ -348,6 +355,15 @@ Scene FitProblem::fitted_scene(const Eigen::VectorXd& theta_in) const {
       s.material.friction = v;
     } else if (u.target == Target::rest_length) {
       continue;  // a scene derives lengths from positions: they go to the side file
+    } else if (u.target == Target::path) {
+      auto& keys = std::get<PinMotionSpec>(s.modules[std::size_t(u.declaration)].spec).keyframes;
+      for (std::size_t j = 0; j < u.keys.size(); ++j)
+        for (int axis = 0; axis < 3; ++axis)
+          keys[u.keys[j]].second[axis] =
+              theta[static_cast<Eigen::Index>(u.block.offset + 3 * j + std::size_t(axis))];
+    } else if (u.target == Target::initial_velocity) {
+      const auto o = static_cast<Eigen::Index>(u.block.offset);
+      s.initial_velocity = Vec3(theta[o], theta[o + 1], theta[o + 2]);
     } else if (u.declaration >= 0) {
       set_spec_parameter(s.modules[static_cast<std::size_t>(u.declaration)].spec, u.id, v);
     }

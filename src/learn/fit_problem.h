@@ -26,7 +26,9 @@ struct FitSettings {
   // Parameter names (docs/learning.md): spring_constant, shear_constant,
   // bend_constant, viscosity, node_mass, rest_length, friction, and module
   // parameters (air_drag.rate, wind.velocity.x, wind.drag, plane.friction, ...),
-  // and, for a material in words, its rule base's inputs (input.mass, ...).
+  // for a material in words its rule base's inputs (input.mass, ...), and
+  // control: a pin_motion's keyframes (pin_motion.keyframes) and the cloth's
+  // initial_velocity.
   std::vector<std::string> params = {"spring_constant", "viscosity"};
   // One unknown per spring (stiffness, damping, rest length) or node (mass)
   // instead of one per family. Module parameters stay one number each.
@@ -39,6 +41,9 @@ struct FitSettings {
   std::size_t tape_budget_bytes = std::size_t(512) << 20;
   // How a point cloud's frames are compared with the cloth (chamfer.h).
   ChamferSettings chamfer;
+  // Strength of the smoothness term on a fitted path (pin_motion.keyframes):
+  // path_smoothness * 1/2 sum over inner keys of |o_k-1 - 2 o_k + o_k+1|^2 (m^2).
+  double path_smoothness = 0;
 };
 
 // One block of theta.

@@ -21,14 +21,16 @@ namespace fit_detail {
 
 // What a block of theta sets in the model.
 enum class Target {
-  stiffness,     // spring_constant / shear_constant / bend_constant: b1 of `elements`
-  viscosity,     // b2 of `elements` (every spring)
-  node_mass,     // 1 / w of `elements` (every node), times the node's mass share
-  rest_length,   // L of `elements`: a scale on the scene's lengths, or each length
-  friction,      // the material's Coulomb coefficient, every node
-  force_module,  // a parameter of net.force_modules[module]
-  constraint,    // a parameter of constraints[module]
-  input,         // a linguistic input of the scene's rule base: the whole material
+  stiffness,         // spring_constant / shear_constant / bend_constant: b1 of `elements`
+  viscosity,         // b2 of `elements` (every spring)
+  node_mass,         // 1 / w of `elements` (every node), times the node's mass share
+  rest_length,       // L of `elements`: a scale on the scene's lengths, or each length
+  friction,          // the material's Coulomb coefficient, every node
+  force_module,      // a parameter of net.force_modules[module]
+  constraint,        // a parameter of constraints[module]
+  input,             // a linguistic input of the scene's rule base: the whole material
+  path,              // the keyframe offsets of constraints[module] (a pin_motion), x y z each
+  initial_velocity,  // every unpinned node's velocity at t = 0, x y z
 };
 
 struct Unknown {
@@ -46,6 +48,11 @@ struct Unknown {
   double low = -HUGE_VAL, high = HUGE_VAL;
   // Per-element blocks: pairs of neighbouring elements the smoothness term ties.
   std::vector<std::pair<std::int32_t, std::int32_t>> neighbours;
+  // Blocks of plain numbers (a path, a velocity): where each starts.
+  std::vector<double> starts;
+  // A path: the keyframes it fits (a first key at t <= 0 stays where the scene
+  // put it: the pins start there).
+  std::vector<std::size_t> keys;
 };
 
 [[noreturn]] void refuse(const std::string& message);
@@ -80,6 +87,10 @@ struct FitProblem::Impl {
                   std::vector<std::int32_t> elements, double value, const std::string& unit,
                   bool per_element);
   void add_input(const std::string& name);
+  void add_path(const std::string& name, int declaration);
+  int constraint_of(int declaration) const;
+  void add_initial_velocity();
+  ClothState start;  // the scene's initial state (a fitted initial velocity changes it)
   void plan(const ReferenceMotion& reference);
   void apply(const Eigen::VectorXd& theta);
   Eigen::VectorXd inside(const Eigen::VectorXd& theta) const;

@@ -61,6 +61,13 @@ void patch_module(nlohmann::ordered_json& out, const ModuleSpec& was, const Modu
         } else if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
                              std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec>) {
           patch_contact(out, w.contact, n.contact);
+        } else if constexpr (std::is_same_v<T, PinMotionSpec>) {
+          if (n.keyframes != w.keyframes) {  // a fitted path: every key, as the reader reads them
+            nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+            for (const auto& [t, offset] : n.keyframes)
+              keys.push_back({{"t", t}, {"offset", vec3_json(offset)}});
+            out["keyframes"] = keys;
+          }
         }
       },
       now);
@@ -147,6 +154,8 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
   } else {
     doc["material"] = material_json(model.scene.material);
   }
+  if (model.scene.initial_velocity != original.initial_velocity)
+    doc["cloth"]["initial_velocity"] = vec3_json(model.scene.initial_velocity);
   if (doc.contains("cloth") && doc["cloth"].contains("mesh")) {
     nlohmann::ordered_json& obj = doc["cloth"]["mesh"]["obj"];
     obj = rebased_path(original.path, obj.get<std::string>(), out);

@@ -237,7 +237,9 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   for (auto* v : {&g->inverse_mass, &g->friction})
     if (!v->empty()) v->assign(n, 0.0);
   g->force_modules.assign(m.net.force_modules.size(), {});
-  g->constraints.assign(C, {});
+  g->constraints.resize(C);
+  for (std::size_t j = 0; j < C; ++j)
+    g->constraints[j].assign(m.constraints[j]->gradient_slots(), 0.0);
   if (!std::isfinite(E)) return E;
   t.adj.resize(n);
   for (std::size_t seg = (T + K - 1) / K; seg-- > 0;) {
@@ -252,7 +254,17 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
       step_backward(m, k, t.states[k - k0], t.pre.data() + (k - k0) * C, t.adj, *g);
     }
   }
+  if (g->want_initial) {  // the frames that read state 0 itself, then dE/d(state 0)
+    add_loss_gradient(0, t.adj);
+    g->initial = t.adj;
+  }
   return E;
+}
+
+void Rollout::set_initial(const ClothState& initial) {
+  if (initial.size() != initial_.size())
+    throw std::invalid_argument("rollout: a new initial state of another size");
+  initial_ = initial;
 }
 
 StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count) {

@@ -62,11 +62,16 @@ struct ObservationPlan {
 };
 
 // dE/d(weight) in the network's order, and dE/d(module parameter) per module
-// slot (parameter_id.h: module_slot).
+// slot (parameter_id.h: module_slot; a constraint's path after its slots:
+// ConstraintModule::gradient_slots).
 struct RolloutGradients {
   SpringGradients springs;
   std::vector<double> inverse_mass, friction;  // per node
-  std::vector<std::array<double, kModuleParameterSlots>> force_modules, constraints;
+  std::vector<std::array<double, kModuleParameterSlots>> force_modules;
+  std::vector<std::vector<double>> constraints;
+  // dE/d(the initial state), when `want_initial` (a fitted initial velocity).
+  bool want_initial = false;
+  ClothState initial;
 };
 
 class Rollout {
@@ -81,6 +86,9 @@ class Rollout {
   // With `gradients`, runs backward too and sets them (sized for the model).
   double run(const RolloutModel& model, RolloutGradients* gradients);
 
+  // The state the next run starts from (a fitted initial velocity changes it).
+  void set_initial(const ClothState& initial);
+  const ClothState& initial() const { return initial_; }
   // The state after the last step of the last run.
   const ClothState& final_state() const { return final_; }
   // The positions compared with each node observation at the last run (m).

@@ -402,5 +402,27 @@ TEST(LearnGradient, APointCloudsChamferDistanceEveryOption) {
     }
 }
 
+// Control (issue 28): a pin_motion's keyframe offsets and the initial velocity,
+// with the path's smoothness term, through a run where the pins move.
+TEST(LearnGradient, APinsPathAndTheInitialVelocity) {
+  SceneBuilder b(5, 4, 0.05);
+  b.pins(nlohmann::json::array({{0, 0}, {0, 3}})).material(80.0, 0.01, 0.08);
+  b.solver("network", 0.002);
+  b.module({{"type", "pin_motion"},
+            {"keyframes",
+             {{{"t", 0.0}, {"offset", {0, 0, 0}}},
+              {{"t", 0.1}, {"offset", {0.02, 0.01, -0.01}}},
+              {{"t", 0.17}, {"offset", {0.05, 0.03, 0.0}}},
+              {{"t", 0.5}, {"offset", {0.04, -0.02, 0.03}}}}}});
+  b.set("/cloth/initial_velocity", {0.1, 0.3, -0.2});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"pin_motion.keyframes", "initial_velocity", "spring_constant"};
+  s.path_smoothness = 3.0;
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  ASSERT_EQ(p.size(), 9u + 3u + 1u);  // the key at t = 0 is where the pins start
+  expect_exact_gradient(p, all_of(p));
+}
+
 }  // namespace
 }  // namespace neurocloth

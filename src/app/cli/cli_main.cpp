@@ -171,8 +171,9 @@ int main(int argc, char** argv) {
       ->required();
   fit_cmd->add_option("--reference-fps", fit.reference_fps,
                       "Frames per second of PLY / XYZ frames or of a PC2 cache");
-  fit_cmd->add_option("--reference-start", fit.reference_start,
-                      "Time of the reference's first frame, s (PLY / XYZ frames, caches; default 0)");
+  fit_cmd->add_option(
+      "--reference-start", fit.reference_start,
+      "Time of the reference's first frame, s (PLY / XYZ frames, caches; default 0)");
   fit_cmd->add_option("--reference-mesh", fit.reference_mesh,
                       "The OBJ a PC2 / MDD cache deforms (its vertex k is node k)");
   fit_cmd->add_option("--chamfer", fit.chamfer,
@@ -192,6 +193,9 @@ int main(int argc, char** argv) {
                     "One weight per spring and node instead of one per family");
   fit_cmd->add_option("--smoothness", fit.smoothness,
                       "Strength of the smoothness regulariser on per-element weights (default 0)");
+  fit_cmd->add_option("--path-smoothness", fit.path_smoothness,
+                      "Strength of the smoothness term on a fitted path (pin_motion.keyframes: "
+                      "its second differences, default 0)");
   fit_cmd->add_option("--optimizer", fit.optimizer, "lbfgs (default) | gd (gradient descent)");
   fit_cmd->add_option("--max-iterations", fit.max_iterations, "At most this many (default 100)");
   fit_cmd->add_option("--time-budget", fit.time_budget,

@@ -157,24 +157,25 @@ int run_snapshot(const SnapshotOptions& options);
 // written); 1 bad input (nothing written).
 struct FitOptions {
   std::string scene;
-  std::string reference;            // --reference: a recording, a CSV, PLY/XYZ frames, a cache
-  double reference_fps = 0;         // --reference-fps: a frame sequence's or a PC2's rate
-  double reference_start = 0;       // --reference-start: the first frame's time, s
-  std::string reference_mesh;       // --reference-mesh: the OBJ a PC2 / MDD cache deforms
+  std::string reference;              // --reference: a recording, a CSV, PLY/XYZ frames, a cache
+  double reference_fps = 0;           // --reference-fps: a frame sequence's or a PC2's rate
+  double reference_start = 0;         // --reference-start: the first frame's time, s
+  std::string reference_mesh;         // --reference-mesh: the OBJ a PC2 / MDD cache deforms
   std::string chamfer = "two-sided";  // --chamfer two-sided | one-sided (point clouds)
   std::string robust = "none";        // --robust none | huber | cauchy (point clouds)
   double robust_scale = 0.01;         // --robust-scale, m
-  std::vector<std::string> params;  // --params a,b,...; empty: spring_constant, viscosity
-  bool per_element = false;         // --per-element
-  double smoothness = 0;            // --smoothness: the per-element regulariser's strength
-  std::string optimizer = "lbfgs";  // --optimizer lbfgs | gd
-  int max_iterations = 100;         // --max-iterations, >= 1
-  double time_budget = 0;           // --time-budget, wall seconds; 0: none
-  double tape_budget_mb = 512;      // --tape-budget, MB of checkpoints
-  std::string out;                  // --out FITTED.json
-  bool online = false;              // --online: fit while the motion plays (fit_online.cpp)
-  int window = 50;                  // --window: steps per online window (W)
-  double learning_rate = 0.05;      // --learning-rate: online step per window (log units)
+  std::vector<std::string> params;    // --params a,b,...; empty: spring_constant, viscosity
+  bool per_element = false;           // --per-element
+  double smoothness = 0;              // --smoothness: the per-element regulariser's strength
+  double path_smoothness = 0;         // --path-smoothness: a fitted path's second differences
+  std::string optimizer = "lbfgs";    // --optimizer lbfgs | gd
+  int max_iterations = 100;           // --max-iterations, >= 1
+  double time_budget = 0;             // --time-budget, wall seconds; 0: none
+  double tape_budget_mb = 512;        // --tape-budget, MB of checkpoints
+  std::string out;                    // --out FITTED.json
+  bool online = false;                // --online: fit while the motion plays (fit_online.cpp)
+  int window = 50;                    // --window: steps per online window (W)
+  double learning_rate = 0.05;        // --learning-rate: online step per window (log units)
 };
 int run_fit(const FitOptions& options);
 // The online mode (--online), in fit_online.cpp; run_fit checks the options both share first.

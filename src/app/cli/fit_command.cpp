@@ -1,6 +1,7 @@
 // neurocloth-cli fit: the network's weights fitted to a reference motion
 // (paper eq. 18-19) by L-BFGS or gradient descent, the parameters' uncertainty
 // at the optimum, and FITTED.json with its curves (docs/learning.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -43,6 +44,15 @@ OptimizerMethod check_options(const FitOptions& o) {
     refuse("--smoothness", "smooths per-element weights: it needs --per-element");
   if (o.smoothness > 0 && o.online)
     refuse("--smoothness", "an online fit has no regulariser: drop --smoothness or --online");
+  if (!(o.path_smoothness >= 0) || !std::isfinite(o.path_smoothness))
+    refuse("--path-smoothness", "must be a finite number >= 0");
+  if (o.path_smoothness > 0 && o.online)
+    refuse("--path-smoothness",
+           "an online fit has no regulariser: drop --path-smoothness or --online");
+  if (o.online && std::find(o.params.begin(), o.params.end(), "initial_velocity") != o.params.end())
+    refuse("--params",
+           "an online fit adapts while the cloth runs: it has no initial velocity to "
+           "fit (drop initial_velocity or --online)");
   if (!(o.tape_budget_mb > 0) || !(o.tape_budget_mb < 1e9))
     refuse("--tape-budget", "must be a number of MB > 0");
   if (!(o.reference_fps >= 0) || !(o.reference_fps <= 1e6))
@@ -209,6 +219,7 @@ FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   if (!o.params.empty()) settings.params = o.params;
   settings.per_element = o.per_element;
   settings.smoothness = o.smoothness;
+  settings.path_smoothness = o.path_smoothness;
   settings.tape_budget_bytes = std::size_t(o.tape_budget_mb * double(1 << 20));
   return FitProblem(scene, reference, settings);
 }
@@ -240,10 +251,10 @@ int run_fit(const FitOptions& o) {
   FitProblem problem = load_fit_problem(o, scene);
   const std::vector<Column> columns = columns_of(problem);
   const double observations = double(problem.observations());
-  std::printf("fit: %s to %s: %zu unknowns, %zu observed %s over %g s, %s\n",
-              scene.name.c_str(), o.reference.c_str(), problem.size(), problem.observations(),
-              problem.fits_cloud() ? "points (Chamfer distance)" : "positions",
-              problem.duration(), to_string(opt.method));
+  std::printf("fit: %s to %s: %zu unknowns, %zu observed %s over %g s, %s\n", scene.name.c_str(),
+              o.reference.c_str(), problem.size(), problem.observations(),
+              problem.fits_cloud() ? "points (Chamfer distance)" : "positions", problem.duration(),
+              to_string(opt.method));
   std::fflush(stdout);
 
   const Objective objective = [&](const Eigen::VectorXd& theta, Eigen::VectorXd* gradient) {
@@ -251,7 +262,8 @@ int run_fit(const FitOptions& o) {
   };
   // The data term's RMS: from the loss itself when there is no regulariser.
   auto rms_of = [&](double loss, const Eigen::VectorXd& theta) {
-    return o.smoothness > 0 ? problem.rms_error(theta) : std::sqrt(2 * loss / observations);
+    return o.smoothness > 0 || o.path_smoothness > 0 ? problem.rms_error(theta)
+                                                     : std::sqrt(2 * loss / observations);
   };
   FitHistory history;
   for (const Column& c : columns)
@@ -295,8 +307,8 @@ int run_fit(const FitOptions& o) {
     // A point's distance to the surface is one number (along the normal); a
     // node's offset from its marker is three.
     const std::size_t residuals = (problem.fits_cloud() ? 1 : 3) * problem.observations();
-    uncertainty = estimate_uncertainty(objective, best, result.best_loss, residuals,
-                                       unknowns_of(problem));
+    uncertainty =
+        estimate_uncertainty(objective, best, result.best_loss, residuals, unknowns_of(problem));
     if (!uncertainty.computed && uncertainty.skipped.empty()) uncertainty.skipped = "not estimated";
   }
   print_uncertainty(uncertainty, problem);

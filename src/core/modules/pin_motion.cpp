@@ -37,15 +37,44 @@ class PinMotion final : public ConstraintModule {
     }
   }
 
-  // The path sets these nodes whatever the step did: nothing flows back through them.
+  // The path sets these nodes whatever the step did: nothing flows back
+  // through them to the step. What reached them goes to the keyframes'
+  // offsets (a fitted trajectory, docs/learning.md "Control"): after the
+  // module's parameter slots, x y z per keyframe.
   bool has_adjoint() const override { return true; }
-  void apply_adjoint(const ClothNetwork&, const StepSpan&, const StepStart&, const ClothState&,
-                     ClothState& adj, NodeVectors&, double*, double*) const override {
+  std::size_t gradient_slots() const override {
+    return kModuleParameterSlots + 3 * spec_.keyframes.size();
+  }
+  void apply_adjoint(const ClothNetwork&, const StepSpan& span, const StepStart&, const ClothState&,
+                     ClothState& adj, NodeVectors&, double*, double* params) const override {
+    Vec3 d_offset = Vec3::Zero(), d_velocity = Vec3::Zero();
     for (int node : spec_.nodes) {
       const auto n = static_cast<std::size_t>(node);
+      d_offset += adj.position(n);
+      d_velocity += adj.velocity(n);
       adj.set_position(n, Vec3::Zero());
       adj.set_velocity(n, Vec3::Zero());
     }
+    if (!params || spec_.keyframes.empty()) return;
+    // path(): held before the first key and after the last (velocity 0);
+    // between keys a and a+1, offset = (1 - s) key_a + s key_a+1 and velocity
+    // = (key_a+1 - key_a) / span.
+    const auto& keys = spec_.keyframes;
+    const double t = span.t0 + span.h;
+    double* d_key = params + kModuleParameterSlots;
+    auto add = [&](std::size_t key, const Vec3& d) {
+      for (int axis = 0; axis < 3; ++axis)
+        d_key[3 * key + std::size_t(axis)] += d[axis];
+    };
+    if (t <= keys.front().first) return add(0, d_offset);
+    if (t >= keys.back().first) return add(keys.size() - 1, d_offset);
+    const auto next = std::lower_bound(keys.begin(), keys.end(), t,
+                                       [](const auto& key, double v) { return key.first < v; });
+    const auto b = static_cast<std::size_t>(next - keys.begin()), a = b - 1;
+    const double length = keys[b].first - keys[a].first;
+    const double s = (t - keys[a].first) / length;
+    add(a, (1 - s) * d_offset - d_velocity / length);
+    add(b, s * d_offset + d_velocity / length);
   }
 
  private:

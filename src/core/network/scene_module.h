@@ -150,11 +150,16 @@ class ConstraintModule : public SceneModule {
   // entry `adj` is dE/d(corrected after), on return dE/d(uncorrected after).
   // dE/d(before positions) is added into adj_before, dE/d(node friction) into
   // adj_friction (per node; null when not wanted), dE/d(own parameters) into
-  // params[module_slot(...)]. Only for modules whose has_adjoint() is true.
+  // params[module_slot(...)] and, for a module with a path, the path's own
+  // after them (gradient_slots() in all). Only for modules whose has_adjoint()
+  // is true.
   virtual void apply_adjoint(const ClothNetwork& /*net*/, const StepSpan& /*span*/,
                              const StepStart& /*before*/, const ClothState& /*uncorrected*/,
                              ClothState& /*adj*/, NodeVectors& /*adj_before*/,
                              double* /*adj_friction*/, double* /*params*/) const {}
+  // How many doubles apply_adjoint's `params` holds: the module parameters'
+  // slots, then what a path adds (pin_motion: 3 per keyframe).
+  virtual std::size_t gradient_slots() const { return kModuleParameterSlots; }
 };
 
 }  // namespace neurocloth

@@ -90,8 +90,12 @@ Simulation Scene::make_simulation() const {
 
 ClothState Scene::initial_state() const {
   ClothState s(topology.rest_positions.size());
-  for (std::size_t i = 0; i < topology.rest_positions.size(); ++i)
+  for (std::size_t i = 0; i < topology.rest_positions.size(); ++i) {
     s.set_position(i, topology.rest_positions[i]);
+    s.set_velocity(i, initial_velocity);
+  }
+  for (int pin : pins)
+    s.set_velocity(static_cast<std::size_t>(pin), Vec3::Zero());
   return s;
 }
 

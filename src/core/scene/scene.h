@@ -27,6 +27,9 @@ struct Scene {
   ClothTopology topology;
   std::optional<GridSpec> grid;  // set when the cloth is a grid
   std::vector<int> pins;         // node indices
+  // Every unpinned node's velocity at t = 0 ("cloth.initial_velocity"; a
+  // fitted throw's, docs/learning.md "Control").
+  Vec3 initial_velocity = Vec3::Zero();
   Material material;
   // Set when the material came from a rule base ({"rules", "inputs"} or
   // {"preset"}): what to re-derive from when an input changes. The rule base
@@ -58,7 +61,7 @@ struct Scene {
 
   // The bare network: springs, masses, gravity, pins (no modules).
   ClothNetwork build_network() const;
-  ClothState initial_state() const;  // rest positions, zero velocity
+  ClothState initial_state() const;  // rest positions, initial_velocity off the pins
   // The network with the scene's modules built and attached: what to run.
   Simulation make_simulation() const;
 };

@@ -297,7 +297,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   if (in.has(root, "description")) in.string(root.at("description"), "description");
 
   const json& cloth = in.member(root, "", "cloth");
-  in.allow_only(cloth, "cloth", {"grid", "mesh", "springs", "pins", "spring_function"});
+  in.allow_only(cloth, "cloth",
+                {"grid", "mesh", "springs", "pins", "spring_function", "initial_velocity"});
   const bool grid = in.has(cloth, "grid"), mesh = in.has(cloth, "mesh");
   if (grid == mesh) in.fail("cloth", "needs exactly one of 'grid' or 'mesh'");
   const SpringFamilies families = read_families(in, cloth, mesh);
@@ -309,6 +310,9 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   }
   check_extent(in, scene.topology, grid ? "cloth.grid" : "cloth.mesh");
   scene.pins = read_pins(in, cloth, scene.topology);
+  if (in.has(cloth, "initial_velocity"))
+    scene.initial_velocity =
+        in.vec3(cloth.at("initial_velocity"), "cloth.initial_velocity", limits::kSpeed);
   scene.spring_function = read_spring_function(in, cloth);
   scene.material = read_material(in, root, scene.fuzzy_material);
   if (in.has(root, "gravity"))

@@ -411,5 +411,69 @@ TEST_F(CliFit, ATimeBudgetShorterThanOneEvaluationKeepsTheStart) {
   EXPECT_NEAR(load_scene(fitted()).material.spring_constant, 50.0, 1e-9);
 }
 
+// Control (issue 28): the corner path and the throw that made a motion, from
+// the command line to a FITTED.json that runs the same motion.
+std::string thrown_scene(const std::string& keys, const std::string& velocity) {
+  return R"({"name": "thrown",
+    "cloth": {"grid": {"rows": 5, "cols": 5, "spacing": 0.05}, "pins": [[0, 0], [0, 4]],
+              "initial_velocity": )" +
+         velocity + R"(},
+    "material": {"spring_constant": 150, "node_mass": 0.004, "viscosity": 0.05},
+    "solver": {"integrator": "network", "dt": 0.001},
+    "modules": [{"type": "pin_motion", "keyframes": [{"t": 0, "offset": [0, 0, 0]},
+                                                     {"t": 0.0837, "offset": )" +
+         keys + R"(}]}]})";
+}
+
+TEST_F(CliFit, APathAndAnInitialVelocityFromTheMotionTheyMade) {
+  const std::string truth =
+      write("truth.json", thrown_scene("[0.02, 0.03, -0.01]", "[0.1, 0.3, 0]"));
+  const std::string start = write("start.json", thrown_scene("[0, 0, 0]", "[0, 0, 0]"));
+  std::string csv = "time,node,x,y,z\n";
+  for (double t : {0.04, 0.08, 0.12, 0.16}) {
+    const Outcome r =
+        run({"simulate", truth, "--seconds", std::to_string(t), "--out", result_path()});
+    ASSERT_EQ(r.code, kOk) << r.err;
+    const json doc = json::parse(read_text(result_path()));
+    for (std::size_t n = 0; n < doc["positions"].size(); ++n) {
+      const json& p = doc["positions"][n];
+      csv += std::to_string(t) + "," + std::to_string(n) + "," + p[0].dump() + "," + p[1].dump() +
+             "," + p[2].dump() + "\n";
+    }
+  }
+  const std::string ref = write("reference.csv", csv);
+  const Outcome r =
+      run({"fit", start, "--reference", ref, "--params", "pin_motion.keyframes,initial_velocity",
+           "--path-smoothness", "0", "--max-iterations", "200", "--out", fitted()});
+  ASSERT_EQ(r.code, kOk) << r.out << r.err;
+  const Scene fitted_scene = load_scene(fitted());
+  const Vec3 v = fitted_scene.initial_velocity;
+  std::printf("  initial velocity off by %.3g m/s\n", (v - Vec3(0.1, 0.3, 0)).norm());
+  // Measured: 1.2e-8 m/s and 2.6e-10 m (the CSV's 17 digits, four frames).
+  EXPECT_LT((v - Vec3(0.1, 0.3, 0)).norm(), 3e-8);
+  const auto& keys = std::get<PinMotionSpec>(fitted_scene.modules.at(0).spec).keyframes;
+  ASSERT_EQ(keys.size(), 2u);
+  EXPECT_EQ(keys[0].second, Vec3::Zero());  // where the pins start: not fitted
+  EXPECT_DOUBLE_EQ(keys[1].first, 0.0837);
+  std::printf("  key off by %.3g m\n", (keys[1].second - Vec3(0.02, 0.03, -0.01)).norm());
+  EXPECT_LT((keys[1].second - Vec3(0.02, 0.03, -0.01)).norm(), 1e-9);
+}
+
+TEST_F(CliFit, ControlOptionsAreCheckedByName) {
+  const std::string start = write("start.json", thrown_scene("[0, 0, 0]", "[0, 0, 0]"));
+  const std::string ref = write("reference.csv", "time,node,x,y,z\n0.1,0,0,0,0\n");
+  expect_input_error({"fit", start, "--reference", ref, "--path-smoothness=-1", "--out", fitted()},
+                     {"--path-smoothness"});
+  expect_input_error({"fit", start, "--reference", ref, "--params", "initial_velocity", "--online",
+                      "--out", fitted()},
+                     {"--params", "initial_velocity", "online"});
+  expect_input_error({"fit", scene_asset("chain"), "--reference", ref, "--params",
+                      "pin_motion.keyframes", "--out", fitted()},
+                     {"--params", "pin_motion.keyframes"});
+  const std::string bad = write("bad.json", thrown_scene("[0, 0, 0]", "[0, 2000, 0]"));
+  expect_input_error({"simulate", bad, "--seconds", "0.1", "--out", result_path()},
+                     {"cloth.initial_velocity"});
+}
+
 }  // namespace
 }  // namespace neurocloth::cli_test
