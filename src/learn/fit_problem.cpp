@@ -196,6 +196,25 @@ Eigen::VectorXd FitProblem::initial() const {
   return theta;
 }
 
+Eigen::VectorXd FitProblem::search_width() const {
+  const Eigen::VectorXd start = initial();
+  Eigen::VectorXd w(static_cast<Eigen::Index>(impl_->size));
+  for (const Unknown& u : impl_->unknowns)
+    for (std::size_t e = 0; e < u.block.count; ++e) {
+      const auto i = static_cast<Eigen::Index>(u.block.offset + e);
+      // Plain numbers: how far a user's guess may be off, by what they are
+      // (a throw by hand is a few m/s, a corner's path some decimetres).
+      const double reach = u.target == Target::path               ? 0.25
+                           : u.target == Target::initial_velocity ? 2.0
+                           : u.target == Target::force_module     ? 5.0  // a wind, m/s
+                                                                  : 0.1;
+      w[i] = u.block.log_space          ? std::log(10.0)
+             : u.target == Target::input ? u.high - u.low
+                                         : std::abs(start[i]) + reach;
+    }
+  return w;
+}
+
 Eigen::VectorXd FitProblem::inside_limits(const Eigen::VectorXd& theta) const {
   return impl_->inside(theta);
 }

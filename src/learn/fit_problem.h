@@ -74,6 +74,12 @@ class FitProblem {
   // here reads theta through it: beyond a limit the loss is flat (its gradient
   // there is zero), so a fit can reach a limit but never write a value past it.
   Eigen::VectorXd inside_limits(const Eigen::VectorXd& theta) const;
+  // How far a global first stage searches each unknown either way from the
+  // start (global_search.h): a decade for a log-space value, a rule base
+  // input's whole range, |start| plus a reach for a plain number: 0.25 m for
+  // a path's offset, 2 m/s for an initial velocity, 5 m/s for a wind, 0.1
+  // otherwise.
+  Eigen::VectorXd search_width() const;
   // The values theta stands for (exp of the log-space blocks), inside the limits.
   Eigen::VectorXd values(const Eigen::VectorXd& theta) const;
 

@@ -1,6 +1,10 @@
 #include "learn/input_starts.h"
 
+#include "core/io/input_error.h"
+#include "learn/global_search.h"
+
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <utility>
 
@@ -41,6 +45,28 @@ InputStarts input_fit_starts(FitProblem& problem, std::size_t extra) {
     out.starts.push_back(std::move(tried[i].second));
   out.said = "a fit of the inputs: tried them on a grid of " + std::to_string(points) +
              " points; descending from the scene's own and the " +
+             std::to_string(out.starts.size() - 1) + " best";
+  return out;
+}
+
+InputStarts global_fit_starts(FitProblem& problem, const GlobalSearchOptions& options) {
+  if (problem.size() > kMaxGlobalUnknowns)
+    throw InputError("command line", "--global",
+                     "a global search looks through at most " +
+                         std::to_string(kMaxGlobalUnknowns) + " unknowns, and this fit has " +
+                         std::to_string(problem.size()) +
+                         " (per-element weights): fit them without --global");
+  InputStarts out;
+  out.starts.push_back(problem.initial());
+  const GlobalSearchResult r = global_search(
+      [&](const Eigen::VectorXd& theta) { return problem.loss(theta, nullptr); },
+      out.starts.front(), problem.search_width(), options);
+  for (const Eigen::VectorXd& b : r.best)
+    if ((b - out.starts.front()).lpNorm<Eigen::Infinity>() > 0) out.starts.push_back(b);
+  out.evaluated = static_cast<std::size_t>(r.evaluations);
+  char best[64] = "no finite loss";
+  if (!r.losses.empty()) std::snprintf(best, sizeof best, "best loss %.6g", r.losses.front());
+  out.said = r.message + ", " + best + "; descending from the scene's own start and the " +
              std::to_string(out.starts.size() - 1) + " best";
   return out;
 }

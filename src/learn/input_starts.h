@@ -8,6 +8,7 @@
 // inputs, then the best few points of a coarse grid over the inputs' ranges
 // (n per input at (i + 1/2) / n of the range: on the terms' slopes more than
 // at their peaks, where a membership is flat), found by forward runs alone.
+// Any other fit may ask for the same from a global search (global_fit_starts).
 #include <string>
 #include <vector>
 
@@ -29,5 +30,13 @@ struct InputStarts {
 // The scene's own start and the `extra` grid points of lowest loss (those
 // with a finite one).
 InputStarts input_fit_starts(FitProblem& problem, std::size_t extra = 3);
+
+// For any fit (`fit --global es`): the scene's own start and the best points a
+// global search (global_search.h) found in the box FitProblem::search_width
+// gives, by forward runs alone. At most kMaxGlobalUnknowns unknowns: an
+// evolution strategy's samples grow with the dimension (refused by name beyond).
+inline constexpr std::size_t kMaxGlobalUnknowns = 64;
+struct GlobalSearchOptions;
+InputStarts global_fit_starts(FitProblem& problem, const GlobalSearchOptions& options);
 
 }  // namespace neurocloth

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "learn/fit_problem.h"
+#include "learn/global_search.h"
 #include "learn/input_starts.h"
 #include "learn/optimizer.h"
 #include "support/recorded_reference.h"
@@ -382,6 +383,46 @@ TEST(LearnRecovery, ACornerPathThatThrowsTheClothOntoATargetShape) {
   // Measured: 7.1 um from 43.3 mm (1.6e-4 of it), 45 iterations; the keys come
   // out as planted to the printed digits.
   EXPECT_LT(rms, 2e-4 * rms_start);
+}
+
+TEST(LearnRecovery, ProbeGlobal) {
+  const double a = std::getenv("AMP") ? std::atof(std::getenv("AMP")) : 3.33;
+  const std::vector<Vec3> keys = {a * Vec3(0.015, 0.03, 0.006), a * Vec3(0.036, 0.045, -0.009),
+                                  a * Vec3(0.03, 0.015, 0.024)};
+  const Vec3 v0 = a * Vec3(0.12, 0.36, -0.09);
+  const Scene truth = thrown_cloth(keys, v0).parse();
+  const ReferenceMotion ref = record(truth, 0.35, 10);
+  const Scene start = thrown_cloth(std::vector<Vec3>(3, Vec3::Zero()), Vec3::Zero()).parse();
+  FitSettings s;
+  s.params = {"pin_motion.keyframes", "initial_velocity"};
+  FitProblem problem(start, ref, s);
+  GlobalSearchOptions g;
+  g.evaluations = std::getenv("EVALS") ? std::atoi(std::getenv("EVALS")) : 400;
+  const InputStarts st = global_fit_starts(problem, g);
+  std::printf("  %s\n", st.said.c_str());
+  const Fit f = fit(problem, st.starts, 100);
+  double key_error = 0;
+  for (std::size_t k = 0; k < 3; ++k)
+    key_error = std::max(key_error, (f.values.segment<3>(Eigen::Index(3 * k)) - keys[k]).norm());
+  std::printf("  keyframes off by at most %.3g m, velocity %.3g, loss %g\n", key_error, (f.values.segment<3>(9) - v0).norm(), f.result.best_loss);
+}
+
+TEST(LearnRecovery, ProbeWordsGlobal) {
+  const double mass = 0.5, elasticity = 0.3, force = 5.0;
+  const Scene truth = cloth_in_words(mass, elasticity, force).parse();
+  const ReferenceMotion ref = record(truth, 0.3, 25);
+  const Scene start = cloth_in_words(0.4, 0.5, 4.0).parse();
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem problem(start, ref, s);
+  GlobalSearchOptions g;
+  g.evaluations = std::getenv("EVALS") ? std::atoi(std::getenv("EVALS")) : 100;
+  const InputStarts st = global_fit_starts(problem, g);
+  std::printf("  %s\n", st.said.c_str());
+  const Fit f = fit(problem, st.starts, 100);
+  std::printf("  mass %.6g elasticity %.6g force %.6g\n", f.values[0], f.values[1], f.values[2]);
+  const Fit plain = fit(problem, problem.initial(), 100);
+  std::printf("  plain: mass %.6g elasticity %.6g force %.6g\n", plain.values[0], plain.values[1], plain.values[2]);
 }
 
 }  // namespace
