@@ -12,7 +12,7 @@ namespace neurocloth {
 std::size_t ReferenceMotion::observations() const {
   std::size_t n = 0;
   for (const ReferenceFrame& f : frames)
-    n += f.nodes.size();
+    n += f.positions.size();  // a cloud's frame has points and no nodes
   return n;
 }
 
