@@ -22,6 +22,23 @@ bool reference_position_ok(const Vec3& p) {
          std::abs(p.z()) <= kMaxReferenceCoordinate;
 }
 
+double required_fps(const ReferenceOptions& options, const std::string& path,
+                    const std::string& why) {
+  if (!(options.fps > 0) || !std::isfinite(options.fps))
+    throw InputError(path, "--reference-fps",
+                     why + ": give its frames per second (a finite number > 0, found " +
+                         std::to_string(options.fps) + ")");
+  return options.fps;
+}
+
+double checked_start(const ReferenceOptions& options, const std::string& path) {
+  if (!(options.start >= 0) || !std::isfinite(options.start))
+    throw InputError(path, "--reference-start",
+                     "must be a finite number >= 0 (s from the scene's start), found " +
+                         std::to_string(options.start));
+  return options.start;
+}
+
 ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
                                 std::size_t node_count) {
   // The magic line is unmistakable; anything else is read as CSV, whose
