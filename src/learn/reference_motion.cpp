@@ -1,11 +1,14 @@
 #include "learn/reference_motion.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
+#include "learn/cloud_sequence.h"
 #include "learn/marker_csv.h"
 #include "learn/motion_recording.h"
+#include "learn/point_cache.h"
 
 namespace neurocloth {
 
@@ -62,7 +65,15 @@ const char* to_string(ReferenceMotion::Source source) {
 }
 
 ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
-                               const ReferenceOptions& /*options*/) {
+                               const ReferenceOptions& options) {
+  // What the path names first (a folder, a pattern of files), then its
+  // extension; what is left is told apart by its first bytes.
+  std::error_code ec;
+  if (is_frame_pattern(path) || std::filesystem::is_directory(path, ec))
+    return read_cloud_sequence(path, options);
+  PointCacheFormat cache = PointCacheFormat::pc2;
+  if (point_cache_format(path, cache)) return read_point_cache(path, node_count, options);
+  if (cloud_file_kind(path) != CloudFileKind::none) return read_cloud_file(path, options);
   return parse_reference(read_text_file(path, "reference motion", kMaxReferenceBytes), path,
                          node_count);
 }
