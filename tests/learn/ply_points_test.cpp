@@ -6,9 +6,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
+#include "core/io/text_file.h"
 #include "learn/reference_motion.h"
+#include "learn/xyz_points.h"
 #include "support/input_error_check.h"
 
 namespace neurocloth {
@@ -196,6 +199,24 @@ TEST(PlyPoints, ReadsCrlfHeadersAndBlankLines) {
       "ply\r\nformat ascii 1.0\r\nelement vertex 2\r\nproperty float x\r\nproperty float y\r\n"
       "property float z\r\nend_header\r\n1 2 3\r\n\r\n  4\t5 6";
   EXPECT_EQ(parse_ply_points(ascii, "crlf.ply"), (std::vector<Vec3>{Vec3(1, 2, 3), Vec3(4, 5, 6)}));
+}
+
+// The fuzzer's seeds (tests/fuzz/corpus/ply) are files this reader accepts:
+// the fuzzer starts from what real tools write.
+TEST(PlyPoints, ReadsTheFuzzSeeds) {
+  const std::filesystem::path seeds =
+      std::filesystem::path(NEUROCLOTH_TEST_DATA) / ".." / "fuzz" / "corpus" / "ply";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    const std::string path = entry.path().string();
+    const std::string bytes = read_text_file(path, "seed", 1 << 20);
+    const std::vector<Vec3> points = entry.path().extension() == ".ply"
+                                         ? parse_ply_points(bytes, path)
+                                         : parse_xyz_points(bytes, path);
+    EXPECT_GE(points.size(), 3u) << path;
+    ++files;
+  }
+  EXPECT_EQ(files, 5);
 }
 
 const std::string kThousandVertices =

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/io/text_file.h"
 #include "support/blender_cache_bytes.h"
 #include "support/input_error_check.h"
 #include "support/scratch_dir.h"
@@ -131,6 +132,28 @@ TEST(PointCache, TellsItsFormatByExtension) {
   EXPECT_TRUE(point_cache_format("run.mdd", f));
   EXPECT_EQ(f, PointCacheFormat::mdd);
   EXPECT_FALSE(point_cache_format("run.obj", f));
+}
+
+// The fuzzer's seeds (tests/fuzz/corpus/point_cache) are caches of its
+// square mesh (0,1,0) (1,1,0) (1,1,1) (0,1,1) that this reader accepts.
+TEST(PointCache, ReadsTheFuzzSeeds) {
+  const std::vector<Vec3> square = {Vec3(0, 1, 0), Vec3(1, 1, 0), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  const std::filesystem::path seeds =
+      std::filesystem::path(NEUROCLOTH_TEST_DATA) / ".." / "fuzz" / "corpus" / "point_cache";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    const std::string path = entry.path().string();
+    PointCacheFormat format = PointCacheFormat::pc2;
+    ASSERT_TRUE(point_cache_format(path, format)) << path;
+    ReferenceOptions o = cache_options(30);
+    o.scene_positions = square;
+    const ReferenceMotion m = parse_point_cache(read_text_file(path, "seed", 1 << 20), path, format,
+                                                square, "square.obj", 4, o);
+    EXPECT_GE(m.frames.size(), 2u) << path;
+    EXPECT_EQ(m.frames[0].positions, square) << path;
+    ++files;
+  }
+  EXPECT_EQ(files, 3);
 }
 
 // The cache and its mesh as files: the OBJ Blender writes beside it.
