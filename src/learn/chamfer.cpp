@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <nanoflann.hpp>
+#include "learn/point_tree.h"
 
 namespace neurocloth {
 
@@ -107,25 +107,9 @@ ClothSurface::ClothSurface(std::vector<std::array<std::int32_t, 3>> tris, std::s
           static_cast<std::int32_t>(t);
 }
 
-namespace chamfer_detail {
+namespace {
 
-// nanoflann reads points through this.
-struct PointList {
-  const std::vector<Vec3>* points;
-  std::size_t kdtree_get_point_count() const { return points->size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    return (*points)[i][static_cast<Eigen::Index>(dim)];
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointList>,
-                                                   PointList, 3, std::uint32_t>;
-
-std::uint32_t nearest(const KdTree& tree, const Vec3& q, double& d2) {
+std::uint32_t nearest(const PointTree& tree, const Vec3& q, double& d2) {
   std::uint32_t index = 0;
   nanoflann::KNNResultSet<double, std::uint32_t> result(1);
   result.init(&index, &d2);
@@ -133,14 +117,13 @@ std::uint32_t nearest(const KdTree& tree, const Vec3& q, double& d2) {
   return index;
 }
 
-}  // namespace chamfer_detail
-using namespace chamfer_detail;
+}  // namespace
 
 struct ChamferTarget::Tree {
   PointList list;
-  KdTree tree;
+  PointTree tree;
   explicit Tree(const std::vector<Vec3>& points)
-      : list{&points}, tree(3, list, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+      : list{&points}, tree(3, list, point_tree_leaves()) {}
 };
 
 ChamferTarget::ChamferTarget(std::vector<Vec3> points, std::shared_ptr<const ClothSurface> surface,
@@ -170,7 +153,7 @@ double ChamferTarget::loss(const std::vector<Vec3>& p, std::vector<Vec3>& gradie
           std::max(longest2, (p[std::size_t(t[e])] - p[std::size_t(t[(e + 1) % 3])]).squaredNorm());
   const double longest = std::sqrt(longest2);
   const PointList nodes{&p};
-  const KdTree node_tree(3, nodes, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const PointTree node_tree(3, nodes, point_tree_leaves());
   std::vector<std::pair<std::uint32_t, double>> near;
   std::vector<std::uint32_t> seen(tris.size(), 0);
   std::uint32_t stamp = 0;

@@ -11,7 +11,9 @@
 namespace neurocloth {
 namespace {
 
-constexpr const char* kColumns[5] = {"time", "node", "x", "y", "z"};
+// A row's columns: a marker names its node; a cloud's point has none.
+constexpr const char* kMarkerColumns[5] = {"time", "node", "x", "y", "z"};
+constexpr const char* kCloudColumns[4] = {"time", "x", "y", "z"};
 
 bool same_name(std::string_view a, const char* b) {
   std::size_t i = 0;
@@ -20,7 +22,17 @@ bool same_name(std::string_view a, const char* b) {
   return i == a.size() && !b[i];
 }
 
-// Reads the rows one by one, building frames as their times go by.
+bool same_columns(const std::vector<std::string_view>& fields, const char* const* columns,
+                  std::size_t count) {
+  if (fields.size() != count) return false;
+  for (std::size_t i = 0; i < count; ++i)
+    if (!same_name(fields[i], columns[i])) return false;
+  return true;
+}
+
+// Reads the rows one by one, building frames as their times go by. The header
+// says whether the rows are markers (each names its node) or a cloud's points
+// (none does: a depth camera or a scanner sees the surface, not the nodes).
 class MarkerReader {
  public:
   MarkerReader(const std::string& path, std::size_t node_count)
@@ -31,28 +43,35 @@ class MarkerReader {
 
   void header(std::string_view line, int line_number) {
     const auto fields = split_fields(line);
-    bool ok = fields.size() == 5;
-    for (std::size_t i = 0; ok && i < 5; ++i)
-      ok = same_name(fields[i], kColumns[i]);
-    if (!ok)
+    if (same_columns(fields, kCloudColumns, 4)) {
+      cloud_ = true;
+      columns_ = kCloudColumns;
+      column_count_ = 4;
+      motion_.source = ReferenceMotion::Source::cloud;
+    } else if (!same_columns(fields, kMarkerColumns, 5)) {
       throw InputError(path_, "header",
-                       "expected 'time,node,x,y,z' (or a recording), found " + shown(line),
+                       "expected 'time,node,x,y,z' (markers), 'time,x,y,z' (a point cloud) or a "
+                       "recording, found " +
+                           shown(line),
                        line_number);
+    }
   }
 
   void row(std::string_view line, int line_number) {
     line_ = line_number;
     const auto fields = split_fields(line);
-    if (fields.size() != 5)
-      throw InputError(
-          path_, fields.size() < 5 ? kColumns[fields.size()] : "after z",
-          "expected 5 fields (time,node,x,y,z), found " + std::to_string(fields.size()),
-          line_number);
+    if (fields.size() != column_count_)
+      throw InputError(path_, fields.size() < column_count_ ? columns_[fields.size()] : "after z",
+                       "expected " + std::to_string(column_count_) + " fields (" +
+                           (cloud_ ? "time,x,y,z" : "time,node,x,y,z") + "), found " +
+                           std::to_string(fields.size()),
+                       line_number);
     const double time = number(fields[0], "time");
     if (time < 0) throw InputError(path_, "time", "must be >= 0 (s from the start)", line_);
-    const std::size_t node = node_index(fields[1]);
-    const Vec3 p(coordinate(fields[2], "x"), coordinate(fields[3], "y"),
-                 coordinate(fields[4], "z"));
+    const std::size_t node = cloud_ ? 0 : node_index(fields[1]);
+    const std::size_t x = cloud_ ? 1 : 2;
+    const Vec3 p(coordinate(fields[x], "x"), coordinate(fields[x + 1], "y"),
+                 coordinate(fields[x + 2], "z"));
 
     if (motion_.frames.empty() || time != motion_.frames.back().time) {
       if (!motion_.frames.empty() && time < motion_.frames.back().time)
@@ -70,19 +89,23 @@ class MarkerReader {
       motion_.frames.back().time = time;
     }
     ReferenceFrame& frame = motion_.frames.back();
-    // seen_in_frame_ holds the 1-based frame in which a node was last seen.
-    if (seen_in_frame_[node] == motion_.frames.size())
-      throw InputError(path_, "node",
-                       "node " + std::to_string(node) + " appears twice at time " +
-                           std::string(fields[0]) + " s",
-                       line_);
-    seen_in_frame_[node] = motion_.frames.size();
     if (++observations_ > kMaxReferenceObservations)
       throw InputError(path_, "",
                        "more than " + std::to_string(kMaxReferenceObservations) +
-                           " observations: more than a reference may hold",
+                           (cloud_ ? " points" : " observations") +
+                           ": more than a reference may hold",
                        line_);
-    frame.nodes.push_back(static_cast<std::int32_t>(node));
+    // A cloud's points have no order and may repeat (two rays hitting one spot).
+    if (!cloud_) {
+      // seen_in_frame_ holds the 1-based frame in which a node was last seen.
+      if (seen_in_frame_[node] == motion_.frames.size())
+        throw InputError(path_, "node",
+                         "node " + std::to_string(node) + " appears twice at time " +
+                             std::string(fields[0]) + " s",
+                         line_);
+      seen_in_frame_[node] = motion_.frames.size();
+      frame.nodes.push_back(static_cast<std::int32_t>(node));
+    }
     frame.positions.push_back(p);
   }
 
@@ -130,6 +153,9 @@ class MarkerReader {
   std::vector<std::size_t> seen_in_frame_;
   std::size_t observations_ = 0;
   int line_ = 0;
+  bool cloud_ = false;
+  const char* const* columns_ = kMarkerColumns;
+  std::size_t column_count_ = 5;
 };
 
 }  // namespace
@@ -139,7 +165,9 @@ ReferenceMotion parse_marker_csv(const std::string& text, const std::string& pat
   if (node_count == 0) throw InputError(path, "", "the scene has no nodes to observe");
   MarkerReader reader(path, node_count);
   const int line_number = walk_csv_lines(
-      text, path, "empty: expected the CSV header 'time,node,x,y,z' or a recording",
+      text, path,
+      "empty: expected the CSV header 'time,node,x,y,z' (markers), 'time,x,y,z' (a point cloud) "
+      "or a recording",
       [&](std::string_view line, int n) { reader.header(line, n); },
       [&](std::string_view line, int n) { reader.row(line, n); });
   return reader.finish(line_number);

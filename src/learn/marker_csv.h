@@ -12,6 +12,15 @@
 // times. Read the way real tools write CSV: CRLF or LF, a UTF-8 byte order
 // mark, spaces around fields, blank lines, '#' comment lines, any number
 // strtod reads (1e-3).
+//
+// A point cloud (a depth camera's or a scanner's points) has no node column:
+//
+//   time,x,y,z
+//   0.0,0.02,0.98,0.01
+//   0.0,0.51,0.97,0.02
+//
+// Its rows of a frame share its time as markers' do; a frame's points have no
+// order and may repeat. The header alone tells the two apart.
 #include <cstddef>
 #include <string>
 
@@ -19,6 +28,7 @@
 
 namespace neurocloth {
 
+// Markers (Source::markers) or a cloud (Source::cloud, frames without nodes).
 // Throws InputError naming `path`, the line and the field on bad input.
 ReferenceMotion parse_marker_csv(const std::string& text, const std::string& path,
                                  std::size_t node_count);

@@ -1,18 +1,21 @@
 #include "learn/reference_motion.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
+#include "learn/cloud_sequence.h"
 #include "learn/marker_csv.h"
 #include "learn/motion_recording.h"
+#include "learn/point_cache.h"
 
 namespace neurocloth {
 
 std::size_t ReferenceMotion::observations() const {
   std::size_t n = 0;
   for (const ReferenceFrame& f : frames)
-    n += f.nodes.size();
+    n += f.positions.size();  // a cloud's frame has points and no nodes
   return n;
 }
 
@@ -20,6 +23,23 @@ bool reference_position_ok(const Vec3& p) {
   // Written so that NaN fails too.
   return std::abs(p.x()) <= kMaxReferenceCoordinate && std::abs(p.y()) <= kMaxReferenceCoordinate &&
          std::abs(p.z()) <= kMaxReferenceCoordinate;
+}
+
+double required_fps(const ReferenceOptions& options, const std::string& path,
+                    const std::string& why) {
+  if (!(options.fps > 0) || !std::isfinite(options.fps))
+    throw InputError(path, "--reference-fps",
+                     why + ": give its frames per second (a finite number > 0, found " +
+                         std::to_string(options.fps) + ")");
+  return options.fps;
+}
+
+double checked_start(const ReferenceOptions& options, const std::string& path) {
+  if (!(options.start >= 0) || !std::isfinite(options.start))
+    throw InputError(path, "--reference-start",
+                     "must be a finite number >= 0 (s from the scene's start), found " +
+                         std::to_string(options.start));
+  return options.start;
 }
 
 ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
@@ -45,7 +65,15 @@ const char* to_string(ReferenceMotion::Source source) {
 }
 
 ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
-                               const ReferenceOptions& /*options*/) {
+                               const ReferenceOptions& options) {
+  // What the path names first (a folder, a pattern of files), then its
+  // extension; what is left is told apart by its first bytes.
+  std::error_code ec;
+  if (is_frame_pattern(path) || std::filesystem::is_directory(path, ec))
+    return read_cloud_sequence(path, options);
+  PointCacheFormat cache = PointCacheFormat::pc2;
+  if (point_cache_format(path, cache)) return read_point_cache(path, node_count, options);
+  if (cloud_file_kind(path) != CloudFileKind::none) return read_cloud_file(path, options);
   return parse_reference(read_text_file(path, "reference motion", kMaxReferenceBytes), path,
                          node_count);
 }

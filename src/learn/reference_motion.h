@@ -58,6 +58,15 @@ struct ReferenceOptions {
   std::vector<Vec3> scene_positions;
 };
 
+// options.fps for a file that needs it (a frame sequence, a PC2 cache):
+// finite and > 0, else InputError naming `path` and field "--reference-fps",
+// `why` saying what the file lacks.
+double required_fps(const ReferenceOptions& options, const std::string& path,
+                    const std::string& why);
+// options.start, finite and >= 0, else InputError naming `path` and field
+// "--reference-start".
+double checked_start(const ReferenceOptions& options, const std::string& path);
+
 // Limits on what a reference file may hold: far above a real capture (2^25
 // node positions is 4096 nodes for 136 s at 60 frames per second), far below
 // what would exhaust memory. Checked before anything is allocated from a count

@@ -1,9 +1,10 @@
 // Fuzzes the reference motion reader, parse_reference(): a recording (binary
-// after a JSON header) or a markers CSV, told apart by the first bytes. An
-// accepted motion must hold what the learning stage relies on: at least one
-// frame, finite times >= 0 in strictly increasing order, every node below the
-// scene's count and once per frame, one finite position per node, and no more
-// observations than the documented limit.
+// after a JSON header) or a CSV of markers or of a point cloud, told apart by
+// the first bytes and the header. An accepted motion must hold what the
+// learning stage relies on: at least one frame, finite times >= 0 in strictly
+// increasing order, every node below the scene's count and once per frame,
+// one finite position per node (a cloud: no nodes, at least one finite point),
+// and no more observations than the documented limit.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -29,6 +30,15 @@ void check_motion(const Contract& c, const ReferenceMotion& m) {
     if (f > 0)
       c.require(frame.time > m.frames[f - 1].time,
                 at + "time " + show(frame.time) + " accepted after " + show(m.frames[f - 1].time));
+    if (m.is_cloud()) {
+      // A cloud's frame: points and no nodes.
+      c.require(frame.nodes.empty(), at + "a cloud frame with nodes");
+      c.require(!frame.positions.empty(), at + "a cloud frame accepted with no points");
+      for (std::size_t i = 0; i < frame.positions.size(); ++i)
+        c.require(reference_position_ok(frame.positions[i]),
+                  at + "point " + std::to_string(i) + " accepted NaN, infinite or beyond 1e6 m");
+      continue;
+    }
     c.require(!frame.nodes.empty(), at + "accepted with no nodes");
     c.require(frame.nodes.size() == frame.positions.size(), at + "nodes and positions differ");
     std::vector<bool> seen(kNodes, false);

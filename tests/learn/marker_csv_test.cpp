@@ -56,6 +56,54 @@ TEST(MarkerCsv, ReadsCsvTheWayRealToolsWriteIt) {
   EXPECT_EQ(m.frames[1].positions[0], Vec3(-1, -2, -3));
 }
 
+// A depth camera's or a scanner's points: no node column, a frame's rows
+// sharing its time, points in no order and possibly repeated; read as leniently
+// as markers.
+TEST(CloudCsv, ReadsPointsWithoutNodesFrameByFrame) {
+  const ReferenceMotion m = parse(
+      "\xEF\xBB\xBF# depth camera, 2 frames\r\n"
+      " Time , X , Y , Z \r\n"
+      "0, 0.5, 1, 0\r\n"
+      "\r\n"
+      "0, 0.5, 1, 0\r\n"
+      "0,-1,2,3e-3\r\n"
+      "# frame 1\r\n"
+      "0.04,\t7,8,9");
+  EXPECT_EQ(m.source, ReferenceMotion::Source::cloud);
+  EXPECT_TRUE(m.is_cloud());
+  ASSERT_EQ(m.frames.size(), 2u);
+  EXPECT_EQ(m.frames[0].time, 0.0);
+  EXPECT_TRUE(m.frames[0].nodes.empty());
+  EXPECT_EQ(m.frames[0].positions,
+            (std::vector<Vec3>{Vec3(0.5, 1, 0), Vec3(0.5, 1, 0), Vec3(-1, 2, 3e-3)}));
+  EXPECT_EQ(m.frames[1].time, 0.04);
+  EXPECT_EQ(m.frames[1].positions, std::vector<Vec3>{Vec3(7, 8, 9)});
+  EXPECT_EQ(m.observations(), 4u);
+}
+
+// A cloud's points are not nodes: a thousand points for a scene of ten nodes.
+TEST(CloudCsv, HoldsMorePointsThanTheSceneHasNodes) {
+  std::string text = "time,x,y,z\n";
+  for (int k = 0; k < 1000; ++k)
+    text += "0.5," + std::to_string(k) + ",0,0\n";
+  const ReferenceMotion m = parse(text);
+  ASSERT_EQ(m.frames.size(), 1u);
+  EXPECT_EQ(m.frames[0].positions.size(), 1000u);
+  EXPECT_EQ(m.frames[0].positions[999], Vec3(999, 0, 0));
+}
+
+const std::string kCloudHeader = "time,x,y,z\n";
+
+TEST(CloudCsvErrors, BadRowsAreNamedByLineAndField) {
+  expect_reference_error(kCloudHeader + "0,1,2\n", kNodes, 2, "z", "found 3");
+  expect_reference_error(kCloudHeader + "0,1,2,3,4\n", kNodes, 2, "after z", "time,x,y,z");
+  expect_reference_error(kCloudHeader + "0,1,nan,3\n", kNodes, 2, "y", "NaN or infinite");
+  expect_reference_error(kCloudHeader + "0,1,2,-1e7\n", kNodes, 2, "z", "1e6 m");
+  expect_reference_error(kCloudHeader + "0,x,2,3\n", kNodes, 2, "x", "not a number");
+  expect_reference_error(kCloudHeader + "0.2,1,2,3\n0.1,1,2,3\n", kNodes, 3, "time", "goes back");
+  expect_reference_error(kCloudHeader + "# nothing\n", kNodes, 2, "", "no rows");
+}
+
 const std::string kHeader = "time,node,x,y,z\n";
 
 TEST(MarkerCsvErrors, AnUnknownNodeIsNamed) {
@@ -99,6 +147,7 @@ TEST(MarkerCsvErrors, NoRowsIsNamed) {
 
 TEST(MarkerCsvErrors, AWrongHeaderIsNamed) {
   expect_reference_error("t,node,x,y,z\n0,1,0,0,0\n", kNodes, 1, "header", "time,node,x,y,z");
+  expect_reference_error("time,y,x,z\n0,1,0,0\n", kNodes, 1, "header", "'time,x,y,z'");
   expect_reference_error("# c\ntime,node,x,y\n0,1,0,0\n", kNodes, 2, "header");
   expect_reference_error("0,1,0,0,0\n", kNodes, 1, "header");
   expect_reference_error(std::string("\0\1\2binary", 9), kNodes, 1, "header");
