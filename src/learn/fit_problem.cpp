@@ -208,7 +208,7 @@ Eigen::VectorXd FitProblem::search_width() const {
                            : u.target == Target::initial_velocity ? 2.0
                            : u.target == Target::force_module     ? 5.0  // a wind, m/s
                                                                   : 0.1;
-      w[i] = u.block.log_space          ? std::log(10.0)
+      w[i] = u.block.log_space           ? std::log(10.0)
              : u.target == Target::input ? u.high - u.low
                                          : std::abs(start[i]) + reach;
     }

@@ -31,8 +31,7 @@ GlobalSearchResult global_search(const std::function<double(const Eigen::VectorX
   w /= w.sum();
   const double mu_eff = 1 / w.squaredNorm();
   const double c_sigma = (mu_eff + 2) / (dn + mu_eff + 5);
-  const double d_sigma =
-      1 + 2 * std::max(0.0, std::sqrt((mu_eff - 1) / (dn + 1)) - 1) + c_sigma;
+  const double d_sigma = 1 + 2 * std::max(0.0, std::sqrt((mu_eff - 1) / (dn + 1)) - 1) + c_sigma;
   const double c_c = (4 + mu_eff / dn) / (dn + 4 + 2 * mu_eff / dn);
   const double scale = (dn + 2) / 3;
   const double c_1 = std::min(1.0, scale * 2 / ((dn + 1.3) * (dn + 1.3) + mu_eff));
@@ -98,7 +97,7 @@ GlobalSearchResult global_search(const std::function<double(const Eigen::VectorX
            c_mu * rank_mu;
     diag = diag.cwiseMax(1e-20);
     sigma *= std::exp((c_sigma / d_sigma) * (p_sigma.norm() / chi_n - 1));
-    sigma = std::min(sigma, 2.0);  // never wider than the box
+    sigma = std::min(sigma, 2.0);                           // never wider than the box
     if (sigma * std::sqrt(diag.maxCoeff()) < 1e-12) break;  // converged to a point
   }
 

@@ -4,8 +4,8 @@
 #include "learn/global_search.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 namespace neurocloth {
@@ -52,15 +52,14 @@ InputStarts input_fit_starts(FitProblem& problem, std::size_t extra) {
 InputStarts global_fit_starts(FitProblem& problem, const GlobalSearchOptions& options) {
   if (problem.size() > kMaxGlobalUnknowns)
     throw InputError("command line", "--global",
-                     "a global search looks through at most " +
-                         std::to_string(kMaxGlobalUnknowns) + " unknowns, and this fit has " +
-                         std::to_string(problem.size()) +
+                     "a global search looks through at most " + std::to_string(kMaxGlobalUnknowns) +
+                         " unknowns, and this fit has " + std::to_string(problem.size()) +
                          " (per-element weights): fit them without --global");
   InputStarts out;
   out.starts.push_back(problem.initial());
-  const GlobalSearchResult r = global_search(
-      [&](const Eigen::VectorXd& theta) { return problem.loss(theta, nullptr); },
-      out.starts.front(), problem.search_width(), options);
+  const GlobalSearchResult r =
+      global_search([&](const Eigen::VectorXd& theta) { return problem.loss(theta, nullptr); },
+                    out.starts.front(), problem.search_width(), options);
   for (const Eigen::VectorXd& b : r.best)
     if ((b - out.starts.front()).lpNorm<Eigen::Infinity>() > 0) out.starts.push_back(b);
   out.evaluated = static_cast<std::size_t>(r.evaluations);

@@ -385,8 +385,41 @@ TEST(LearnRecovery, ACornerPathThatThrowsTheClothOntoATargetShape) {
   EXPECT_LT(rms, 2e-4 * rms_start);
 }
 
-TEST(LearnRecovery, ProbeGlobal) {
-  const double a = std::getenv("AMP") ? std::atof(std::getenv("AMP")) : 3.33;
+// The global first stage (global_search.h, `fit --global es`) on the words'
+// plateau: from (0.4, 0.5, 4) one descent stops at force 4 (checked below);
+// 60 forward runs of the evolution strategy, then the descents, find the words
+// as the grid of TheWordsOfACloth does, without knowing they are words.
+TEST(LearnRecovery, AGlobalStageFindsTheWordsFromAPlateau) {
+  const double mass = 0.5, elasticity = 0.3, force = 5.0;
+  const Scene truth = cloth_in_words(mass, elasticity, force).parse();
+  const ReferenceMotion ref = record(truth, 0.3, 25);
+  const Scene start = cloth_in_words(0.4, 0.5, 4.0).parse();
+  FitSettings s;
+  s.params = {"input.mass", "input.elasticity", "input.force"};
+  FitProblem problem(start, ref, s);
+  const Fit plain = fit(problem, problem.initial(), 100);
+  std::printf("  one descent: force %.6g (true %g)\n", plain.values[2], force);
+  EXPECT_GT(std::abs(plain.values[2] - force), 0.5);  // measured: stops at 4.0
+  GlobalSearchOptions g;
+  g.evaluations = 60;
+  const InputStarts starts = global_fit_starts(problem, g);
+  std::printf("  %s\n", starts.said.c_str());
+  EXPECT_EQ(starts.evaluated, 57u);  // the start and whole generations of 7 within 60
+  const Fit f = fit(problem, starts.starts, 100);
+  std::printf("  mass %.9g, elasticity %.9g, force %.9g\n", f.values[0], f.values[1], f.values[2]);
+  // Measured: loss 7.4e-24; each input to 1e-9 of its range or better.
+  EXPECT_LT(std::abs(f.values[0] - mass) / 1.48, 1e-9);
+  EXPECT_LT(std::abs(f.values[1] - elasticity), 1e-9);
+  EXPECT_LT(std::abs(f.values[2] - force) / 10, 1e-9);
+}
+
+// The throw three times as hard, whose rough loss stops a descent 12 cm off
+// (docs/learning.md, "Control"): 1500 runs of the global stage, then the
+// descents from its best, come within 4.5 mm. Not to rounding: on a loss this
+// rough where the search lands decides how near the descent gets (a throw
+// 0.1% softer, keys times 3.33, came within 0.03 mm).
+TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
+  const double a = 10.0 / 3;
   const std::vector<Vec3> keys = {a * Vec3(0.015, 0.03, 0.006), a * Vec3(0.036, 0.045, -0.009),
                                   a * Vec3(0.03, 0.015, 0.024)};
   const Vec3 v0 = a * Vec3(0.12, 0.36, -0.09);
@@ -396,33 +429,24 @@ TEST(LearnRecovery, ProbeGlobal) {
   FitSettings s;
   s.params = {"pin_motion.keyframes", "initial_velocity"};
   FitProblem problem(start, ref, s);
+  auto off = [&](const Fit& f) {
+    double k = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      k = std::max(k, (f.values.segment<3>(Eigen::Index(3 * i)) - keys[i]).norm());
+    return std::pair(k, (f.values.segment<3>(9) - v0).norm());
+  };
+  const auto [plain_keys, plain_v] = off(fit(problem, problem.initial(), 100));
+  std::printf("  one descent: keys off by %.3g m, velocity by %.3g m/s\n", plain_keys, plain_v);
+  EXPECT_GT(plain_keys, 0.05);  // measured: 0.12 m
   GlobalSearchOptions g;
-  g.evaluations = std::getenv("EVALS") ? std::atoi(std::getenv("EVALS")) : 400;
-  const InputStarts st = global_fit_starts(problem, g);
-  std::printf("  %s\n", st.said.c_str());
-  const Fit f = fit(problem, st.starts, 100);
-  double key_error = 0;
-  for (std::size_t k = 0; k < 3; ++k)
-    key_error = std::max(key_error, (f.values.segment<3>(Eigen::Index(3 * k)) - keys[k]).norm());
-  std::printf("  keyframes off by at most %.3g m, velocity %.3g, loss %g\n", key_error, (f.values.segment<3>(9) - v0).norm(), f.result.best_loss);
-}
-
-TEST(LearnRecovery, ProbeWordsGlobal) {
-  const double mass = 0.5, elasticity = 0.3, force = 5.0;
-  const Scene truth = cloth_in_words(mass, elasticity, force).parse();
-  const ReferenceMotion ref = record(truth, 0.3, 25);
-  const Scene start = cloth_in_words(0.4, 0.5, 4.0).parse();
-  FitSettings s;
-  s.params = {"input.mass", "input.elasticity", "input.force"};
-  FitProblem problem(start, ref, s);
-  GlobalSearchOptions g;
-  g.evaluations = std::getenv("EVALS") ? std::atoi(std::getenv("EVALS")) : 100;
-  const InputStarts st = global_fit_starts(problem, g);
-  std::printf("  %s\n", st.said.c_str());
-  const Fit f = fit(problem, st.starts, 100);
-  std::printf("  mass %.6g elasticity %.6g force %.6g\n", f.values[0], f.values[1], f.values[2]);
-  const Fit plain = fit(problem, problem.initial(), 100);
-  std::printf("  plain: mass %.6g elasticity %.6g force %.6g\n", plain.values[0], plain.values[1], plain.values[2]);
+  g.evaluations = 1500;
+  const InputStarts starts = global_fit_starts(problem, g);
+  std::printf("  %s\n", starts.said.c_str());
+  const auto [k, v] = off(fit(problem, starts.starts, 100));
+  std::printf("  keys off by %.3g m, velocity by %.3g m/s\n", k, v);
+  // Measured: 4.45e-3 m and 0.211 m/s.
+  EXPECT_LT(k, 5e-3);
+  EXPECT_LT(v, 0.23);
 }
 
 }  // namespace

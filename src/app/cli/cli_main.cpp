@@ -196,6 +196,11 @@ int main(int argc, char** argv) {
   fit_cmd->add_option("--path-smoothness", fit.path_smoothness,
                       "Strength of the smoothness term on a fitted path (pin_motion.keyframes: "
                       "its second differences, default 0)");
+  fit_cmd->add_option("--global", fit.global,
+                      "none (default) | es: first search the box around the start by forward "
+                      "runs (an evolution strategy), then descend from the best it found");
+  fit_cmd->add_option("--global-evaluations", fit.global_evaluations,
+                      "Forward runs of the global search (default 200)");
   fit_cmd->add_option("--optimizer", fit.optimizer, "lbfgs (default) | gd (gradient descent)");
   fit_cmd->add_option("--max-iterations", fit.max_iterations, "At most this many (default 100)");
   fit_cmd->add_option("--time-budget", fit.time_budget,

@@ -168,6 +168,8 @@ struct FitOptions {
   bool per_element = false;           // --per-element
   double smoothness = 0;              // --smoothness: the per-element regulariser's strength
   double path_smoothness = 0;         // --path-smoothness: a fitted path's second differences
+  std::string global = "none";        // --global none | es: a global first stage
+  int global_evaluations = 200;       // --global-evaluations: its forward runs
   std::string optimizer = "lbfgs";    // --optimizer lbfgs | gd
   int max_iterations = 100;           // --max-iterations, >= 1
   double time_budget = 0;             // --time-budget, wall seconds; 0: none

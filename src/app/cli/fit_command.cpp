@@ -18,6 +18,7 @@
 #include "learn/chamfer.h"
 #include "learn/fit_problem.h"
 #include "learn/fitted_output.h"
+#include "learn/global_search.h"
 #include "learn/input_starts.h"
 #include "learn/optimizer.h"
 #include "learn/reference_motion.h"
@@ -53,6 +54,12 @@ OptimizerMethod check_options(const FitOptions& o) {
     refuse("--params",
            "an online fit adapts while the cloth runs: it has no initial velocity to "
            "fit (drop initial_velocity or --online)");
+  if (o.global != "none" && o.global != "es")
+    refuse("--global", "unknown search '" + o.global + "' (expected none or es)");
+  if (o.global_evaluations < 1 || o.global_evaluations > 1000000)
+    refuse("--global-evaluations", "must be a number of runs in [1, 1000000]");
+  if (o.global != "none" && o.online)
+    refuse("--global", "an online fit adapts as the motion plays: drop --global or --online");
   if (!(o.tape_budget_mb > 0) || !(o.tape_budget_mb < 1e9))
     refuse("--tape-budget", "must be a number of MB > 0");
   if (!(o.reference_fps >= 0) || !(o.reference_fps <= 1e6))
@@ -271,7 +278,11 @@ int run_fit(const FitOptions& o) {
   ProgressLine progress(o.max_iterations, o.time_budget);
   const InterruptScope ctrl_c;
   opt.should_stop = [] { return InterruptScope::interrupted(); };
-  const InputStarts starts = input_fit_starts(problem);
+  GlobalSearchOptions global;
+  global.evaluations = o.global_evaluations;
+  global.should_stop = [] { return InterruptScope::interrupted(); };
+  const InputStarts starts =
+      o.global == "es" ? global_fit_starts(problem, global) : input_fit_starts(problem);
   if (!starts.said.empty()) std::printf("%s\n", starts.said.c_str());
   const OptimizerResult result =
       minimize_from(objective, starts.starts, opt, [&](const IterationInfo& it) {
