@@ -417,7 +417,7 @@ TEST(LearnRecovery, AGlobalStageFindsTheWordsFromAPlateau) {
 // (docs/learning.md, "Control"): 1500 runs of the global stage, then the
 // descents from its best, come within 4.5 mm. Not to rounding: on a loss this
 // rough where the search lands decides how near the descent gets (a throw
-// 0.1% softer, keys times 3.33, came within 0.03 mm).
+// 0.1% smaller, keys times 3.33, came within 0.03 mm).
 TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
   const double a = 10.0 / 3;
   const std::vector<Vec3> keys = {a * Vec3(0.015, 0.03, 0.006), a * Vec3(0.036, 0.045, -0.009),
