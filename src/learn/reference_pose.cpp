@@ -34,6 +34,8 @@ ReferencePose reference_pose(const ReferenceMotion& reference, double time) {
   const ReferenceFrame& a = *(after - 1);
   const double w = (time - a.time) / (b.time - a.time);  // times strictly increase
   const ReferenceFrame& nearer = w < 0.5 ? a : b;
+  // A cloud's points belong to no node: nothing to interpolate between frames.
+  if (reference.is_cloud()) return whole_frame(nearer, false);
   const ReferenceFrame& other = w < 0.5 ? b : a;
   const double w_nearer = w < 0.5 ? 1 - w : w;
   ReferencePose pose;

@@ -4,7 +4,8 @@
 // panel"). Between two frames the positions are interpolated linearly; a
 // marker seen in only one of the two frames around the moment is shown where
 // the nearer of them saw it, or not at all when the nearer did not see it.
-// Node numbers stay the file's (reference_motion.h).
+// Node numbers stay the file's (reference_motion.h). A point cloud's pose is
+// the nearer frame's points, with no nodes.
 #include <cstdint>
 #include <vector>
 
@@ -13,8 +14,8 @@
 namespace neurocloth {
 
 struct ReferencePose {
-  std::vector<std::int32_t> nodes;  // file indices
-  std::vector<Vec3> positions;      // one per entry of `nodes`, m
+  std::vector<std::int32_t> nodes;  // file indices (none for a cloud)
+  std::vector<Vec3> positions;      // one per entry of `nodes`, or a cloud's points, m
   // Clamped to the reference: before its first frame the first is shown,
   // after its last the last; `ended` says the moment lies past the last.
   bool ended = false;

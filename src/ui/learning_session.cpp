@@ -60,9 +60,11 @@ void LearningSession::update(const FrameSnapshot& snapshot, const CommandSink& p
     const SceneGeometry& g = *snapshot.geometry;
     double sum = 0;
     std::size_t matched = 0;
+    for (const Vec3& p : pose.positions)
+      ghost_points_.insert(ghost_points_.end(), {float(p.x()), float(p.y()), float(p.z())});
+    // The distance to the cloth where a point names its node (a cloud's do not).
     for (std::size_t k = 0; k < pose.nodes.size(); ++k) {
       const Vec3& p = pose.positions[k];
-      ghost_points_.insert(ghost_points_.end(), {float(p.x()), float(p.y()), float(p.z())});
       const std::int32_t file = pose.nodes[k];
       if (file < 0 || static_cast<std::size_t>(file) >= g.node_count) continue;
       sum += (snapshot.node(static_cast<std::size_t>(g.numbering.node(file))) - p).squaredNorm();

@@ -64,5 +64,17 @@ TEST(ReferencePose, ARecordingShowsEveryNode) {
     EXPECT_NEAR((p.positions[node] - Vec3(node, 1.5, 0)).norm(), 0, 1e-12);
 }
 
+TEST(ReferencePose, ACloudShowsTheNearerFramesPoints) {
+  ReferenceMotion r;
+  r.source = ReferenceMotion::Source::cloud;
+  r.frames.push_back({0.0, {}, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)}});
+  r.frames.push_back({1.0, {}, {Vec3(0, 1, 0)}});
+  const ReferencePose early = reference_pose(r, 0.4), late = reference_pose(r, 0.6);
+  EXPECT_TRUE(early.nodes.empty());
+  EXPECT_EQ(early.positions, r.frames[0].positions);
+  EXPECT_EQ(late.positions, r.frames[1].positions);
+  EXPECT_TRUE(reference_pose(r, 2.0).ended);
+}
+
 }  // namespace
 }  // namespace neurocloth
