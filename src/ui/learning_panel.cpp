@@ -40,9 +40,8 @@ void reference_section(PanelContext& ctx, LearningSession& s) {
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s: %s, %zu frames to %.3g s, %zu observed positions", ref->path.c_str(),
-                     to_string(ref->source),
-                     ref->frames.size(), ref->frames.empty() ? 0.0 : ref->frames.back().time,
-                     ref->observations());
+                     to_string(ref->source), ref->frames.size(),
+                     ref->frames.empty() ? 0.0 : ref->frames.back().time, ref->observations());
   ImGui::PopStyleColor();
   ImGui::Checkbox("show as ghost points", &set.show_ghosts);
   if (s.ghost_count() > 0) {

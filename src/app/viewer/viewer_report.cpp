@@ -112,11 +112,10 @@ void ViewerReport::error(double t, const std::string& message) {
 void ViewerReport::learning(const LearningSession& s) {
   json out;
   if (const auto& ref = s.reference())
-    out["reference"] = {
-        {"path", ref->path},
-        {"source", to_string(ref->source)},
-        {"frames", ref->frames.size()},
-        {"observations", ref->observations()}};
+    out["reference"] = {{"path", ref->path},
+                        {"source", to_string(ref->source)},
+                        {"frames", ref->frames.size()},
+                        {"observations", ref->observations()}};
   else
     out["reference"] = nullptr;
   out["ghosts"] = {{"count", s.ghost_count()},
