@@ -1,8 +1,6 @@
 #include "core/network/spring_adjoint.h"
 
-#include <algorithm>
-
-#include "core/network/reciprocal_sqrt.h"
+#include "core/network/position_neuron.h"
 #include "core/network/spring_chunks.h"
 
 namespace neurocloth {
@@ -20,9 +18,11 @@ struct AdjointChunk {
 // spring), r = (v_b - v_a).d, m = b1 phi + b2 r / l and the force on n_i1
 // f = (m / l) d, given lf = dE/df = adj_force[a] - adj_force[b]:
 //   A = lf.d,  dE/dm = A / l,  dE/dl = -A m / l^2 - dE/dm b2 r / l^2 + dE/dm b1 phi'
-//   dE/dd = (m / l) lf + (dE/dm b2 / l)(v_b - v_a) + (dE/dl / l) d,  dE/d(v_b - v_a) = (dE/dm b2 /
-//   l) d dE/db1 = dE/dm phi,  dE/db2 = dE/dm r / l,  dE/dL = -dE/dm b1 (phi' + extra threshold
-//   [beyond])
+//   dE/dd = (m / l) lf + (dE/dm b2 / l)(v_b - v_a) + (dE/dl / l) d
+//   dE/d(v_b - v_a) = (dE/dm b2 / l) d
+//   dE/db1 = dE/dm phi,  dE/db2 = dE/dm r / l,  dE/dL = dE/dm b1 dphi/dL
+// where phi' = 1 and dphi/dL = -1; beyond a stiffening spring's threshold,
+// phi' = 1 + extra and dphi/dL = -1 - extra (1 + threshold).
 // Direct == true (the chunk's two node ranges are disjoint, as in the force
 // evaluation): add into adj at both ends at once; else store n_i1's share in
 // `out` for accumulate_chunk.
@@ -47,21 +47,17 @@ void adjoint_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count,
   double* gL = g.rest_length.data() + first;
   const double threshold = L.function.strain_threshold;
   const double extra = L.function.stiffening_factor - 1.0;
+  const double min_len2 = kMinSpringLength * kMinSpringLength;
 #pragma GCC ivdep
   for (std::int32_t k = 0; k < count; ++k) {
     const double dx = xb[k] - xa[k], dy = yb[k] - ya[k], dz = zb[k] - za[k];
-    const double len2 = dx * dx + dy * dy + dz * dz;
-    const bool has_direction = len2 > kMinSpringLength * kMinSpringLength;
-    const double mask = has_direction ? 1.0 : 0.0;
-    const double inv_len = reciprocal_sqrt(has_direction ? len2 : 1.0);
-    const double len = (has_direction ? len2 : 1.0) * inv_len;
-    double phi = len - rest[k], slope = 1.0, rest_slope = -1.0;
-    if constexpr (K == SpringFunctionKind::stiffening) {
-      const bool beyond = phi - threshold * rest[k] > 0.0;
-      phi += beyond ? extra * (phi - threshold * rest[k]) : 0.0;
-      slope += beyond ? extra : 0.0;
-      rest_slope -= beyond ? extra * (1.0 + threshold) : 0.0;
-    }
+    const PositionNeuron<double> n =
+        position_neuron<K>(dx, dy, dz, rest[k], threshold, extra, min_len2);
+    const double mask = n.has_direction ? 1.0 : 0.0;
+    const double inv_len = n.inv_len, phi = n.stretch;
+    // phi' = dphi/dl and dphi/dL.
+    const double slope = 1.0 + (n.stiffer ? extra : 0.0);
+    const double rest_slope = -1.0 - (n.stiffer ? extra * (1.0 + threshold) : 0.0);
     const double dvx = vxb[k] - vxa[k], dvy = vyb[k] - vya[k], dvz = vzb[k] - vza[k];
     const double rel = dvx * dx + dvy * dy + dvz * dz;
     const double m = b1[k] * phi + b2[k] * rel * inv_len;
