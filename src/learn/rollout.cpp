@@ -143,7 +143,7 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
           h * free[i] *
           (t.forces.x[i] * adj.vx[i] + t.forces.y[i] * adj.vy[i] + t.forces.z[i] * adj.vz[i]);
   }
-  spring_forces_adjoint(net, in, t.adj_force, adj, g.springs);
+  spring_forces_adjoint(net, in, t.adj_force, adj, g.springs, t.inputs.kernel);
   for (std::size_t j = 0; j < net.force_modules.size(); ++j)
     net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
                                              g.force_modules[j].data());
