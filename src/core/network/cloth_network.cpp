@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "core/network/reciprocal_sqrt.h"
+#include "core/network/position_neuron.h"
 #include "core/network/spring_chunk_avx512.h"
 #include "core/network/spring_chunks.h"
 #include "core/network/spring_kernel.h"
@@ -132,24 +132,17 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
     // as b - a so that a positive force pulls n_i1 towards n_i2).
     const T dx = static_cast<T>(xb[k] - xa[k]), dy = static_cast<T>(yb[k] - ya[k]),
             dz = static_cast<T>(zb[k] - za[k]);
-    const T len2 = dx * dx + dy * dy + dz * dz;
-    const bool has_direction = len2 > min_len2;
-    const T safe_len2 = has_direction ? len2 : T(1);
-    const T inv_len = reciprocal_sqrt(safe_len2);
-    const T len = safe_len2 * inv_len;
-    const T r = static_cast<T>(rest[k]);
-    T e = len - r;                                      // spring function: linear ...
-    if constexpr (K == SpringFunctionKind::stiffening)  // ... or stiffer beyond the threshold
-      e += extra * std::max(T(0), e - threshold * r);
+    const PositionNeuron<T> n =
+        position_neuron<K>(dx, dy, dz, static_cast<T>(rest[k]), threshold, extra, min_len2);
     // Force neuron: b1 * spring + b2 * damping, along the unit direction.
-    T magnitude = static_cast<T>(b1[k]) * e;
+    T magnitude = static_cast<T>(b1[k]) * n.stretch;
     if constexpr (Damped) {
       // Velocity-force neuron: (v_b - v_a) projected on the spring, times len.
       const T rel = static_cast<T>(vxb[k] - vxa[k]) * dx + static_cast<T>(vyb[k] - vya[k]) * dy +
                     static_cast<T>(vzb[k] - vza[k]) * dz;
-      magnitude += static_cast<T>(b2[k]) * rel * inv_len;
+      magnitude += static_cast<T>(b2[k]) * rel * n.inv_len;
     }
-    const T scale = has_direction ? magnitude * inv_len : T(0);
+    const T scale = n.has_direction ? magnitude * n.inv_len : T(0);
     const double gx = scale * dx, gy = scale * dy, gz = scale * dz;
     if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
       fx[k] += gx;

@@ -16,6 +16,10 @@
 // chosen per evaluation (ForceInputs::kernel, spring_kernel.h). Internal to
 // the core.
 //
+// Their adjoint (spring_adjoint.cpp) starts from the same neurons
+// (Forces8::neurons) and sends its outputs to the nodes the same ways
+// (add_direct_avx512, add_row_avx512).
+//
 // FloatForces8 is the same in float (SpringPrecision::float32). Both need
 // AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512
 // masks): every AVX-512 CPU since Skylake-X has both.
@@ -80,46 +84,76 @@ struct Forces8 : ChunkInputs {
         extra(_mm512_set1_pd(L.function.stiffening_factor - 1.0)),
         min_len2(_mm512_set1_pd(min_length * min_length)) {}
 
-  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
+  // What the force neuron of each spring reads: the outputs of its
+  // position-force and velocity-force neurons and the direction they act
+  // along. The forces below and their adjoint (spring_adjoint.cpp) both start
+  // here, so the adjoint differentiates the arithmetic that ran.
+  struct Neurons {
+    __m512d dx, dy, dz;     // p_b - p_a
+    __m512d dvx, dvy, dvz;  // v_b - v_a (Damped)
+    __m512d inv_len;        // 1/|d|; 1 where the spring has no direction
+    __m512d stretch;        // phi(|d| - L): the position-force neuron
+    __m512d speed;          // (v_b - v_a).d / |d|: the velocity-force neuron (Damped)
+    __mmask8 has_direction;
+    __mmask8 stiffer;  // phi's steep part (stiffening): beyond the strain threshold
+  };
+
+  Neurons neurons(std::int32_t k, __mmask8 m) const {
     const __m512d one = _mm512_set1_pd(1.0);
     const __m512d three_halves = _mm512_set1_pd(1.5);
     // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
     const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
-    const __m512d dx = _mm512_sub_pd(at(px + offset), at(px));
-    const __m512d dy = _mm512_sub_pd(at(py + offset), at(py));
-    const __m512d dz = _mm512_sub_pd(at(pz + offset), at(pz));
-    const __m512d len2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
-                                       _mm512_mul_pd(dz, dz));
-    const __mmask8 has_direction = _mm512_cmp_pd_mask(len2, min_len2, _CMP_GT_OQ);
-    const __m512d safe_len2 = _mm512_mask_blend_pd(has_direction, one, len2);
+    Neurons n;
+    n.dx = _mm512_sub_pd(at(px + offset), at(px));
+    n.dy = _mm512_sub_pd(at(py + offset), at(py));
+    n.dz = _mm512_sub_pd(at(pz + offset), at(pz));
+    const __m512d len2 =
+        _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(n.dx, n.dx), _mm512_mul_pd(n.dy, n.dy)),
+                      _mm512_mul_pd(n.dz, n.dz));
+    n.has_direction = _mm512_cmp_pd_mask(len2, min_len2, _CMP_GT_OQ);
+    const __m512d safe_len2 = _mm512_mask_blend_pd(n.has_direction, one, len2);
     // Newton on 1/y^2 - x from the 2^-14 estimate: 2^-14 -> 3e-9 -> round-off.
     // (maskz forms here and below: GCC 12 warns about the unmasked forms'
     // undefined pass-through.)
     const __m512d half_x = _mm512_mul_pd(_mm512_set1_pd(0.5), safe_len2);
     __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, safe_len2);
     y = _mm512_mul_pd(y, _mm512_sub_pd(three_halves, _mm512_mul_pd(half_x, _mm512_mul_pd(y, y))));
-    const __m512d inv_len =
+    n.inv_len =
         _mm512_mul_pd(y, _mm512_sub_pd(three_halves, _mm512_mul_pd(half_x, _mm512_mul_pd(y, y))));
-    const __m512d len = _mm512_mul_pd(safe_len2, inv_len);
+    const __m512d len = _mm512_mul_pd(safe_len2, n.inv_len);
     const __m512d r = at(rest);
-    __m512d e = _mm512_sub_pd(len, r);
+    n.stretch = _mm512_sub_pd(len, r);
+    n.stiffer = 0;
     if constexpr (K == SpringFunctionKind::stiffening) {
-      const __m512d beyond = _mm512_maskz_max_pd(0xFF, _mm512_setzero_pd(),
-                                                 _mm512_sub_pd(e, _mm512_mul_pd(threshold, r)));
-      e = _mm512_add_pd(e, _mm512_mul_pd(extra, beyond));
+      const __m512d over = _mm512_sub_pd(n.stretch, _mm512_mul_pd(threshold, r));
+      n.stiffer = _mm512_cmp_pd_mask(over, _mm512_setzero_pd(), _CMP_GT_OQ);
+      const __m512d beyond = _mm512_maskz_max_pd(0xFF, _mm512_setzero_pd(), over);
+      n.stretch = _mm512_add_pd(n.stretch, _mm512_mul_pd(extra, beyond));
     }
-    __m512d magnitude = _mm512_mul_pd(at(b1), e);
+    n.dvx = n.dvy = n.dvz = n.speed = _mm512_setzero_pd();
     if constexpr (Damped) {
+      n.dvx = _mm512_sub_pd(at(vx + offset), at(vx));
+      n.dvy = _mm512_sub_pd(at(vy + offset), at(vy));
+      n.dvz = _mm512_sub_pd(at(vz + offset), at(vz));
       const __m512d rel =
-          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(at(vx + offset), at(vx)), dx),
-                                      _mm512_mul_pd(_mm512_sub_pd(at(vy + offset), at(vy)), dy)),
-                        _mm512_mul_pd(_mm512_sub_pd(at(vz + offset), at(vz)), dz));
-      magnitude = _mm512_add_pd(magnitude, _mm512_mul_pd(at(b2), _mm512_mul_pd(rel, inv_len)));
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(n.dvx, n.dx), _mm512_mul_pd(n.dvy, n.dy)),
+                        _mm512_mul_pd(n.dvz, n.dz));
+      n.speed = _mm512_mul_pd(rel, n.inv_len);
     }
-    const __m512d scale = _mm512_maskz_mul_pd(has_direction, magnitude, inv_len);
-    gx = _mm512_mul_pd(scale, dx);
-    gy = _mm512_mul_pd(scale, dy);
-    gz = _mm512_mul_pd(scale, dz);
+    return n;
+  }
+
+  // Force neuron: b1 * stretch + b2 * speed, along the unit direction; g is
+  // the force on n_i1.
+  void operator()(std::int32_t k, __mmask8 m, __m512d (&g)[3]) const {
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    const Neurons n = neurons(k, m);
+    __m512d magnitude = _mm512_mul_pd(at(b1), n.stretch);
+    if constexpr (Damped) magnitude = _mm512_add_pd(magnitude, _mm512_mul_pd(at(b2), n.speed));
+    const __m512d scale = _mm512_maskz_mul_pd(n.has_direction, magnitude, n.inv_len);
+    g[0] = _mm512_mul_pd(scale, n.dx);
+    g[1] = _mm512_mul_pd(scale, n.dy);
+    g[2] = _mm512_mul_pd(scale, n.dz);
   }
 };
 
@@ -142,7 +176,7 @@ struct FloatForces8 : ChunkInputs {
         extra(_mm256_set1_ps(static_cast<float>(L.function.stiffening_factor - 1.0))),
         min_len2(_mm256_set1_ps(static_cast<float>(min_length * min_length))) {}
 
-  void operator()(std::int32_t k, __mmask8 m, __m512d& gx, __m512d& gy, __m512d& gz) const {
+  void operator()(std::int32_t k, __mmask8 m, __m512d (&g)[3]) const {
     // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
     const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
     const auto narrow = [](__m512d v) { return _mm512_maskz_cvtpd_ps(0xFF, v); };
@@ -175,9 +209,9 @@ struct FloatForces8 : ChunkInputs {
           _mm256_add_ps(magnitude, _mm256_mul_ps(narrow(at(b2)), _mm256_mul_ps(rel, inv_len)));
     }
     const __m256 scale = _mm256_maskz_mul_ps(has_direction, magnitude, inv_len);
-    gx = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
-    gy = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
-    gz = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dz));
+    g[0] = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dx));
+    g[1] = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dy));
+    g[2] = _mm512_maskz_cvtps_pd(0xFF, _mm256_mul_ps(scale, dz));
   }
 };
 
@@ -188,31 +222,42 @@ template <SpringFunctionKind K, typename T, bool Damped>
 using Forces =
     std::conditional_t<std::is_same_v<T, float>, FloatForces8<K, Damped>, Forces8<K, Damped>>;
 
-// propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
-// b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
-template <SpringFunctionKind K, bool Direct, typename T, bool Damped>
-void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
-                            std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
-                            double* fx, double* fy, double* fz) {
-  const Forces<K, T, Damped> forces(L, first, count, a, b, s, min_length);
-  const std::int32_t offset = b - a;
+// How a chunk's outputs reach the nodes, for any kernel that gives N of them
+// per spring, n_i1's share (n_i2 receives the negatives): `outputs(k, m, g)`
+// sets g[0..N) for springs k..k+7 of the chunk, lanes outside m zero. The
+// forces give three (spring_chunks.h's acceleration neurons), their adjoint six
+// (dE/dp and dE/dv of n_i1, spring_adjoint.cpp). Always inlined: called
+// out of line they read the kernel's pointers through a reference at every
+// vector, and the 32 x 32 step measured 2.4% slower (step_benchmark).
+
+// A direct chunk (its two node ranges disjoint): dst[c] + k receives +g[c],
+// dst[c] + offset + k receives -g[c].
+template <int N, typename Outputs>
+[[gnu::always_inline]] inline void add_direct_avx512(std::int32_t count, std::int32_t offset,
+                                                     const Outputs& outputs,
+                                                     double* const (&dst)[N]) {
   for (std::int32_t k = 0; k < count; k += 8) {
     const __mmask8 m = first_lanes(count - k);
-    __m512d gx, gy, gz;
-    forces(k, m, gx, gy, gz);
-    if constexpr (Direct) {  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
-      const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
-      _mm512_mask_storeu_pd(fx + k, m, _mm512_add_pd(at(fx), gx));
-      _mm512_mask_storeu_pd(fy + k, m, _mm512_add_pd(at(fy), gy));
-      _mm512_mask_storeu_pd(fz + k, m, _mm512_add_pd(at(fz), gz));
-      _mm512_mask_storeu_pd(fx + offset + k, m, _mm512_sub_pd(at(fx + offset), gx));
-      _mm512_mask_storeu_pd(fy + offset + k, m, _mm512_sub_pd(at(fy + offset), gy));
-      _mm512_mask_storeu_pd(fz + offset + k, m, _mm512_sub_pd(at(fz + offset), gz));
-    } else {
-      _mm512_mask_storeu_pd(fx + k, m, gx);
-      _mm512_mask_storeu_pd(fy + k, m, gy);
-      _mm512_mask_storeu_pd(fz + k, m, gz);
-    }
+    __m512d g[N];
+    outputs(k, m, g);
+    const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
+    for (int c = 0; c < N; ++c)
+      _mm512_mask_storeu_pd(dst[c] + k, m, _mm512_add_pd(at(dst[c]), g[c]));
+    for (int c = 0; c < N; ++c)
+      _mm512_mask_storeu_pd(dst[c] + offset + k, m, _mm512_sub_pd(at(dst[c] + offset), g[c]));
+  }
+}
+
+// The outputs stored at dst[c] + k, for accumulate_chunk.
+template <int N, typename Outputs>
+[[gnu::always_inline]] inline void store_avx512(std::int32_t count, const Outputs& outputs,
+                                                double* const (&dst)[N]) {
+  for (std::int32_t k = 0; k < count; k += 8) {
+    const __mmask8 m = first_lanes(count - k);
+    __m512d g[N];
+    outputs(k, m, g);
+    for (int c = 0; c < N; ++c)
+      _mm512_mask_storeu_pd(dst[c] + k, m, g[c]);
   }
 }
 
@@ -220,36 +265,59 @@ void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32
 // +g[j] - g[j - O]. The outputs never leave the registers: g[j - O] is the
 // vector before shifted by O lanes. Each node's sum is the expression
 // accumulate_chunk evaluates, so the bits are the same as that path's.
-template <SpringFunctionKind K, typename T, int O, bool Damped>
-void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
-                          std::int32_t a, const ClothState& s, double min_length, double* fx,
-                          double* fy, double* fz) {
+template <int O, int N, typename Outputs>
+[[gnu::always_inline]] inline void add_row_avx512(std::int32_t count, const Outputs& outputs,
+                                                  double* const (&dst)[N]) {
   static_assert(O > 0 && O < 8, "a shift within one vector");
-  const Forces<K, T, Damped> forces(L, first, count, a, a + O, s, min_length);
-  __m512d px = _mm512_setzero_pd(), py = px, pz = px;
   const auto shifted = [](__m512d now, __m512d before) {
     return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),
                                                          _mm512_castpd_si512(before), 8 - O));
   };
-  double* const dst[3] = {fx, fy, fz};
+  __m512d last[N];
+  for (int c = 0; c < N; ++c)
+    last[c] = _mm512_setzero_pd();
   for (std::int32_t k = 0; k < count + O; k += 8) {
     const __mmask8 springs = first_lanes(count - k > 0 ? count - k : 0);
     const __mmask8 nodes = first_lanes(count + O - k);
-    __m512d g[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
-    if (k < count) forces(k, springs, g[0], g[1], g[2]);
-    const __m512d before[3] = {shifted(g[0], px), shifted(g[1], py), shifted(g[2], pz)};
-    for (int c = 0; c < 3; ++c) {
+    __m512d g[N];
+    for (int c = 0; c < N; ++c)
+      g[c] = _mm512_setzero_pd();
+    if (k < count) outputs(k, springs, g);
+    for (int c = 0; c < N; ++c) {
+      const __m512d before = shifted(g[c], last[c]);
       const __m512d f = _mm512_maskz_loadu_pd(nodes, dst[c] + k);
       // Nodes with a spring starting at them: f + (g[j] - g[j-O]) (g[j-O] is
       // zero before the first); the last O nodes: f - g[j-O].
-      const __m512d inner = _mm512_add_pd(f, _mm512_sub_pd(g[c], before[c]));
-      const __m512d outer = _mm512_sub_pd(f, before[c]);
+      const __m512d inner = _mm512_add_pd(f, _mm512_sub_pd(g[c], before));
+      const __m512d outer = _mm512_sub_pd(f, before);
       _mm512_mask_storeu_pd(dst[c] + k, nodes, _mm512_mask_blend_pd(springs, outer, inner));
+      last[c] = g[c];
     }
-    px = g[0];
-    py = g[1];
-    pz = g[2];
   }
+}
+
+// propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
+// b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
+template <SpringFunctionKind K, bool Direct, typename T, bool Damped>
+void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
+                            std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
+                            double* fx, double* fy, double* fz) {
+  const Forces<K, T, Damped> forces(L, first, count, a, b, s, min_length);
+  double* const dst[3] = {fx, fy, fz};
+  if constexpr (Direct)  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
+    add_direct_avx512<3>(count, b - a, forces, dst);
+  else
+    store_avx512<3>(count, forces, dst);
+}
+
+// A row's chunk of neighbours (b = a + O) summed in registers (add_row_avx512).
+template <SpringFunctionKind K, typename T, int O, bool Damped>
+void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
+                          std::int32_t a, const ClothState& s, double min_length, double* fx,
+                          double* fy, double* fz) {
+  const Forces<K, T, Damped> forces(L, first, count, a, a + O, s, min_length);
+  double* const dst[3] = {fx, fy, fz};
+  add_row_avx512<O, 3>(count, forces, dst);
 }
 
 }  // namespace spring_chunks
