@@ -195,9 +195,10 @@ TEST(LearnRecovery, PerElementFitFindsAPlantedStiffBand) {
               4 * k, median_out, k);
   std::printf("  band %.5g to %.5g N/m, elsewhere %.5g to %.5g\n", in.front(), in.back(),
               out.front(), out.back());
-  // Measured: medians off by 4.0e-4 and 1.1e-4; each band spring within
-  // 1.7e-3 of its planted value (239.58 to 240.19 N/m), each other spring
-  // within 2.2e-2 (59.78 to 61.32 N/m); 300 iterations, loss 7.9e-8.
+  // Measured: medians off by 3.5e-4 and 1.1e-5; each band spring within
+  // 7.9e-4 of its planted value (239.81 to 239.99 N/m), each other spring
+  // within 1.9e-2 (59.72 to 61.14 N/m); 300 iterations, loss 7.9e-8. (Before
+  // the AVX-512 adjoint, whose last bits differ: 4.0e-4, 1.1e-4, 1.7e-3, 2.2e-2.)
   EXPECT_LT(recovery_error(median_in, 4 * k), 5e-4);
   EXPECT_LT(recovery_error(median_out, k), 1.5e-4);
   for (double v : {in.front(), in.back()})
@@ -347,12 +348,14 @@ TEST(LearnRecovery, APlantedCornerPathAndThrowFromTheMotion) {
   v_error = (f.values.segment<3>(9) - v0).norm();
   std::printf("  keyframes off by at most %.3g m, initial velocity by %.3g m/s\n", key_error,
               v_error);
-  // Measured: 2.2e-10 m and 1.0e-9 m/s (159 iterations). A throw three times
+  // Measured: 2.8e-10 m and 9.4e-9 m/s (183 iterations, loss 6e-17 m^2; with
+  // the adjoint before the AVX-512 kernel, 2.2e-10 and 1.0e-9 in 159: the fit
+  // stops on the gradient's relative tolerance, where rounding decides). A throw three times
   // as hard (a cloth of 4 g nodes flung at 1.2 m/s) crumples: its loss is
-  // rough at the millimetre scale and the same fit stops at 4.6, keys 12 cm
+  // rough at the millimetre scale and the same fit stops at 4.7, keys 12 cm
   // off (docs/learning.md, "Control").
-  EXPECT_LT(key_error, 5e-10);
-  EXPECT_LT(v_error, 2e-9);
+  EXPECT_LT(key_error, 4e-10);
+  EXPECT_LT(v_error, 1.2e-8);
 }
 
 // Liang et al. 2019's throw: only the shape the cloth should land in is given
@@ -415,7 +418,7 @@ TEST(LearnRecovery, AGlobalStageFindsTheWordsFromAPlateau) {
 
 // The throw three times as hard, whose rough loss stops a descent 12 cm off
 // (docs/learning.md, "Control"): 1500 runs of the global stage, then the
-// descents from its best, come within 4.5 mm. Not to rounding: on a loss this
+// descents from its best, come within 4.3 mm. Not to rounding: on a loss this
 // rough where the search lands decides how near the descent gets (a throw
 // 0.1% smaller, keys times 3.33, came within 0.03 mm).
 TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
@@ -444,9 +447,10 @@ TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
   std::printf("  %s\n", starts.said.c_str());
   const auto [k, v] = off(fit(problem, starts.starts, 100));
   std::printf("  keys off by %.3g m, velocity by %.3g m/s\n", k, v);
-  // Measured: 4.45e-3 m and 0.211 m/s.
-  EXPECT_LT(k, 5e-3);
-  EXPECT_LT(v, 0.23);
+  // Measured: 4.25e-3 m and 0.179 m/s (4.45e-3 and 0.211 before the AVX-512
+  // adjoint changed the gradient's last bits: a rough loss amplifies them).
+  EXPECT_LT(k, 4.7e-3);
+  EXPECT_LT(v, 0.2);
 }
 
 }  // namespace
