@@ -7,6 +7,30 @@
 #include <stdexcept>
 
 namespace neurocloth {
+namespace {
+
+// Reductions as plain loops: GCC 12's AVX-512 reductions in Eigen trip its
+// -Wuninitialized at -O1 (bug 105593; src/learn/CMakeLists.txt).
+double squared_norm(const Eigen::VectorXd& v) {
+  double s = 0;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    s += v[i] * v[i];
+  return s;
+}
+double largest(const Eigen::VectorXd& v) {
+  double m = -HUGE_VAL;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    m = std::max(m, v[i]);
+  return m;
+}
+double farthest_apart(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double m = 0;
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    m = std::max(m, std::abs(a[i] - b[i]));
+  return m;
+}
+
+}  // namespace
 
 GlobalSearchResult global_search(const std::function<double(const Eigen::VectorXd&)>& f,
                                  const Eigen::VectorXd& start, const Eigen::VectorXd& width,
@@ -28,8 +52,11 @@ GlobalSearchResult global_search(const std::function<double(const Eigen::VectorX
   Eigen::VectorXd w(mu);
   for (int i = 0; i < mu; ++i)
     w[i] = std::log(mu + 0.5) - std::log(i + 1.0);
-  w /= w.sum();
-  const double mu_eff = 1 / w.squaredNorm();
+  double w_sum = 0;
+  for (int i = 0; i < mu; ++i)
+    w_sum += w[i];
+  w /= w_sum;
+  const double mu_eff = 1 / squared_norm(w);
   const double c_sigma = (mu_eff + 2) / (dn + mu_eff + 5);
   const double d_sigma = 1 + 2 * std::max(0.0, std::sqrt((mu_eff - 1) / (dn + 1)) - 1) + c_sigma;
   const double c_c = (4 + mu_eff / dn) / (dn + 4 + 2 * mu_eff / dn);
@@ -90,15 +117,16 @@ GlobalSearchResult global_search(const std::function<double(const Eigen::VectorX
     m += sigma * y_w;
     p_sigma = (1 - c_sigma) * p_sigma + std::sqrt(c_sigma * (2 - c_sigma) * mu_eff) * z_w;
     const double lag = 1 - std::pow(1 - c_sigma, 2.0 * out.generations);
-    const bool h_sigma = p_sigma.norm() / std::sqrt(lag) < (1.4 + 2 / (dn + 1)) * chi_n;
+    const double p_sigma_norm = std::sqrt(squared_norm(p_sigma));
+    const bool h_sigma = p_sigma_norm / std::sqrt(lag) < (1.4 + 2 / (dn + 1)) * chi_n;
     p_c = (1 - c_c) * p_c + (h_sigma ? std::sqrt(c_c * (2 - c_c) * mu_eff) : 0.0) * y_w;
     diag = (1 - c_1 - c_mu) * diag +
            c_1 * (p_c.cwiseProduct(p_c) + (h_sigma ? 0.0 : c_c * (2 - c_c)) * diag) +
            c_mu * rank_mu;
     diag = diag.cwiseMax(1e-20);
-    sigma *= std::exp((c_sigma / d_sigma) * (p_sigma.norm() / chi_n - 1));
-    sigma = std::min(sigma, 2.0);                           // never wider than the box
-    if (sigma * std::sqrt(diag.maxCoeff()) < 1e-12) break;  // converged to a point
+    sigma *= std::exp((c_sigma / d_sigma) * (p_sigma_norm / chi_n - 1));
+    sigma = std::min(sigma, 2.0);                         // never wider than the box
+    if (sigma * std::sqrt(largest(diag)) < 1e-12) break;  // converged to a point
   }
 
   std::stable_sort(seen.begin(), seen.end(),
@@ -108,7 +136,7 @@ GlobalSearchResult global_search(const std::function<double(const Eigen::VectorX
     if (static_cast<int>(out.best.size()) == o.keep || !std::isfinite(s.loss)) break;
     bool near = false;
     for (const Eigen::VectorXd& k : kept_u)
-      near = near || (s.u - k).lpNorm<Eigen::Infinity>() < 0.05;
+      near = near || farthest_apart(s.u, k) < 0.05;
     if (near) continue;
     kept_u.push_back(s.u);
     out.best.push_back(start + s.u.cwiseProduct(width));

@@ -60,8 +60,8 @@ InputStarts global_fit_starts(FitProblem& problem, const GlobalSearchOptions& op
   const GlobalSearchResult r =
       global_search([&](const Eigen::VectorXd& theta) { return problem.loss(theta, nullptr); },
                     out.starts.front(), problem.search_width(), options);
-  for (const Eigen::VectorXd& b : r.best)
-    if ((b - out.starts.front()).lpNorm<Eigen::Infinity>() > 0) out.starts.push_back(b);
+  for (const Eigen::VectorXd& b : r.best)  // (!=, not a norm: GCC 12's AVX-512 reductions)
+    if (b != out.starts.front()) out.starts.push_back(b);
   out.evaluated = static_cast<std::size_t>(r.evaluations);
   char best[64] = "no finite loss";
   if (!r.losses.empty()) std::snprintf(best, sizeof best, "best loss %.6g", r.losses.front());

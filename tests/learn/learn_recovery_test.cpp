@@ -418,7 +418,7 @@ TEST(LearnRecovery, AGlobalStageFindsTheWordsFromAPlateau) {
 
 // The throw three times as hard, whose rough loss stops a descent 12 cm off
 // (docs/learning.md, "Control"): 1500 runs of the global stage, then the
-// descents from its best, come within 4.3 mm. Not to rounding: on a loss this
+// descents from its best, come within 4.9 mm. Not to rounding: on a loss this
 // rough where the search lands decides how near the descent gets (a throw
 // 0.1% smaller, keys times 3.33, came within 0.03 mm).
 TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
@@ -447,10 +447,12 @@ TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
   std::printf("  %s\n", starts.said.c_str());
   const auto [k, v] = off(fit(problem, starts.starts, 100));
   std::printf("  keys off by %.3g m, velocity by %.3g m/s\n", k, v);
-  // Measured: 4.25e-3 m and 0.179 m/s (4.45e-3 and 0.211 before the AVX-512
-  // adjoint changed the gradient's last bits: a rough loss amplifies them).
-  EXPECT_LT(k, 4.7e-3);
-  EXPECT_LT(v, 0.2);
+  // Measured: 4.89e-3 m and 0.079 m/s. A rough loss amplifies last bits: the
+  // search's sums taken by Eigen's vector reductions gave 4.25e-3 and 0.179,
+  // and before the AVX-512 adjoint 4.45e-3 and 0.211. The search's own sums
+  // are plain loops now, the same in every build.
+  EXPECT_LT(k, 5.2e-3);
+  EXPECT_LT(v, 0.09);
 }
 
 }  // namespace
