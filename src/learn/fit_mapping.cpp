@@ -28,6 +28,13 @@ void set_spec_parameter(ModuleSpec& spec, const ParameterId& id, double value) {
       },
       spec);
 }
+void set_path(ModuleSpec& spec, const Unknown& u, const Eigen::VectorXd& theta) {
+  auto& keys = std::get<PinMotionSpec>(spec).keyframes;
+  for (std::size_t j = 0; j < u.keys.size(); ++j)
+    for (int axis = 0; axis < 3; ++axis)
+      keys[u.keys[j]].second[axis] =
+          theta[static_cast<Eigen::Index>(u.block.offset + 3 * j + std::size_t(axis))];
+}
 }  // namespace fit_detail
 
 void FitProblem::Impl::apply(const Eigen::VectorXd& theta) {
@@ -86,11 +93,7 @@ void FitProblem::Impl::apply(const Eigen::VectorXd& theta) {
     } else if (u.target == Target::path) {
       auto at = changed_constraints.try_emplace(
           u.declaration, scene.modules[static_cast<std::size_t>(u.declaration)]);
-      auto& keys = std::get<PinMotionSpec>(at.first->second.spec).keyframes;
-      for (std::size_t j = 0; j < u.keys.size(); ++j)
-        for (int axis = 0; axis < 3; ++axis)
-          keys[u.keys[j]].second[axis] =
-              theta[static_cast<Eigen::Index>(u.block.offset + 3 * j + std::size_t(axis))];
+      set_path(at.first->second.spec, u, theta);
     } else if (u.target == Target::initial_velocity) {
       const auto o = static_cast<Eigen::Index>(u.block.offset);
       const Vec3 v(theta[o], theta[o + 1], theta[o + 2]);

@@ -375,11 +375,7 @@ Scene FitProblem::fitted_scene(const Eigen::VectorXd& theta_in) const {
     } else if (u.target == Target::rest_length) {
       continue;  // a scene derives lengths from positions: they go to the side file
     } else if (u.target == Target::path) {
-      auto& keys = std::get<PinMotionSpec>(s.modules[std::size_t(u.declaration)].spec).keyframes;
-      for (std::size_t j = 0; j < u.keys.size(); ++j)
-        for (int axis = 0; axis < 3; ++axis)
-          keys[u.keys[j]].second[axis] =
-              theta[static_cast<Eigen::Index>(u.block.offset + 3 * j + std::size_t(axis))];
+      set_path(s.modules[std::size_t(u.declaration)].spec, u, theta);
     } else if (u.target == Target::initial_velocity) {
       const auto o = static_cast<Eigen::Index>(u.block.offset);
       s.initial_velocity = Vec3(theta[o], theta[o + 1], theta[o + 2]);

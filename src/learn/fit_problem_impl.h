@@ -58,6 +58,9 @@ struct Unknown {
 [[noreturn]] void refuse(const std::string& message);
 // Writes a module parameter into a module's declaration.
 void set_spec_parameter(ModuleSpec& spec, const ParameterId& id, double value);
+// Writes a path's fitted keyframe offsets (theta's block of `u`) into its
+// pin_motion's declaration.
+void set_path(ModuleSpec& spec, const Unknown& u, const Eigen::VectorXd& theta);
 
 }  // namespace fit_detail
 

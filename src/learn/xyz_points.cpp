@@ -32,17 +32,7 @@ int first_three(std::string_view line, std::string_view (&values)[3]) {
 
 std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& path) {
   std::vector<Vec3> points;
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
-  int line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t eol = rest.find('\n');
-    const std::string_view line = trimmed(rest.substr(0, eol));
-    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
-    if (line_number == std::numeric_limits<int>::max())
-      throw InputError(path, "", "too many lines", line_number);
-    ++line_number;
-    if (line.empty() || line.front() == '#') continue;
+  const int last_line = walk_text_lines(text, path, [&](std::string_view line, int line_number) {
     std::string_view values[3];
     const int n = first_three(line, values);
     if (n < 3)
@@ -67,9 +57,9 @@ std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& p
                            " points: more than a reference may hold",
                        line_number);
     points.emplace_back(xyz[0], xyz[1], xyz[2]);
-  }
+  });
   if (points.empty())
-    throw InputError(path, "", "no points: every line is blank or a comment", line_number);
+    throw InputError(path, "", "no points: every line is blank or a comment", last_line);
   return points;
 }
 

@@ -57,12 +57,10 @@ FieldNumber finite_number(std::string_view field) {
   return {v, ""};
 }
 
-int walk_csv_lines(const std::string& text, const std::string& path, const std::string& no_header,
-                   const std::function<void(std::string_view line, int number)>& header,
-                   const std::function<void(std::string_view line, int number)>& row) {
+int walk_text_lines(const std::string& text, const std::string& path,
+                    const std::function<void(std::string_view line, int number)>& each) {
   std::string_view rest(text);
   if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark
-  bool have_header = false;
   int line_number = 0;
   while (!rest.empty()) {
     const std::size_t eol = rest.find('\n');
@@ -72,15 +70,22 @@ int walk_csv_lines(const std::string& text, const std::string& path, const std::
       throw InputError(path, "", "too many lines", line_number);
     ++line_number;
     if (line.empty() || line.front() == '#') continue;
-    if (!have_header) {
-      header(line, line_number);
-      have_header = true;
-    } else {
-      row(line, line_number);
-    }
+    each(line, line_number);
   }
-  if (!have_header) throw InputError(path, "header", no_header, line_number);
   return line_number;
+}
+
+int walk_csv_lines(const std::string& text, const std::string& path, const std::string& no_header,
+                   const std::function<void(std::string_view line, int number)>& header,
+                   const std::function<void(std::string_view line, int number)>& row) {
+  bool have_header = false;
+  const int last = walk_text_lines(text, path, [&](std::string_view line, int number) {
+    if (have_header) return row(line, number);
+    header(line, number);
+    have_header = true;
+  });
+  if (!have_header) throw InputError(path, "header", no_header, last);
+  return last;
 }
 
 }  // namespace neurocloth

@@ -30,6 +30,13 @@ struct FieldNumber {
 // strtod's syntax (leading spaces, "1e3", hex), which must take the whole field.
 FieldNumber finite_number(std::string_view field);
 
+// Walks a text line by line: a UTF-8 byte order mark skipped, each line
+// trimmed, blank lines and '#' comments left out; `each` gets every other
+// line with its number. Returns the number of the last line. What the CSV
+// readers and the XYZ reader share.
+int walk_text_lines(const std::string& text, const std::string& path,
+                    const std::function<void(std::string_view line, int number)>& each);
+
 // Walks a CSV text line by line: a UTF-8 byte order mark skipped, each line
 // trimmed, blank lines and '#' comments left out; `header` gets the first
 // line, `row` every other, each with its line number. Returns the number of
