@@ -1,7 +1,6 @@
 #include "learn/xyz_points.h"
 
 #include <cmath>
-#include <limits>
 #include <string_view>
 
 #include "core/io/csv_fields.h"
