@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_contract.h"
+#include "fuzz/reference_contract.h"
 #include "learn/point_cache.h"
 #include "learn/reference_motion.h"
 
@@ -23,17 +24,11 @@ const std::vector<Vec3> kMesh = {Vec3(0, 1, 0), Vec3(1, 1, 0), Vec3(1, 1, 1), Ve
 const std::vector<Vec3> kShuffledScene = {kMesh[2], kMesh[0], kMesh[3], kMesh[1]};
 
 void check_cache(const Contract& c, const ReferenceMotion& m) {
-  c.require(!m.frames.empty(), "a cache accepted with no frames");
+  check_frames_and_times(c, m);
   c.require(m.source == ReferenceMotion::Source::cache, "a cache read as another source");
-  c.require(m.observations() <= kMaxReferenceObservations, "more positions than the limit");
   for (std::size_t f = 0; f < m.frames.size(); ++f) {
     const ReferenceFrame& frame = m.frames[f];
     const std::string at = "frame " + std::to_string(f) + " ";
-    c.finite(frame.time, at + "time");
-    c.require(frame.time >= 0, at + "time accepted < 0: " + show(frame.time));
-    if (f > 0)
-      c.require(frame.time > m.frames[f - 1].time,
-                at + "time " + show(frame.time) + " accepted after " + show(m.frames[f - 1].time));
     c.require(frame.nodes.size() == kNodes && frame.positions.size() == kNodes,
               at + "without every node once");
     for (std::size_t k = 0; k < frame.nodes.size() && k < frame.positions.size(); ++k) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_contract.h"
+#include "fuzz/reference_contract.h"
 #include "learn/reference_motion.h"
 
 namespace neurocloth::fuzz {
@@ -20,16 +21,10 @@ namespace {
 constexpr std::size_t kNodes = 4;
 
 void check_motion(const Contract& c, const ReferenceMotion& m) {
-  c.require(!m.frames.empty(), "a reference accepted with no frames");
-  c.require(m.observations() <= kMaxReferenceObservations, "more observations than the limit");
+  check_frames_and_times(c, m);
   for (std::size_t f = 0; f < m.frames.size(); ++f) {
     const ReferenceFrame& frame = m.frames[f];
     const std::string at = "frame " + std::to_string(f) + " ";
-    c.finite(frame.time, at + "time");
-    c.require(frame.time >= 0, at + "time accepted < 0: " + show(frame.time));
-    if (f > 0)
-      c.require(frame.time > m.frames[f - 1].time,
-                at + "time " + show(frame.time) + " accepted after " + show(m.frames[f - 1].time));
     if (m.is_cloud()) {
       // A cloud's frame: points and no nodes.
       c.require(frame.nodes.empty(), at + "a cloud frame with nodes");
