@@ -16,10 +16,11 @@ using namespace fit_detail;
 
 void FitProblem::Impl::build_model() {
   const SolverSettings& s = scene.solver;
-  if (s.integrator != IntegratorKind::network)
+  if (s.integrator != IntegratorKind::network && s.integrator != IntegratorKind::projective)
     throw InputError(scene.path, "solver.integrator",
                      std::string("fit: integrator '") + to_string(s.integrator) +
-                         "' has no adjoint (fit runs the network integrator, fixed or adaptive)");
+                         "' has no adjoint (fit runs the network integrator, fixed or adaptive, "
+                         "and projective)");
   // The adjoint differentiates the double step: a float forward pass would
   // make its gradients those of another function.
   if (s.precision != SpringPrecision::float64)
@@ -33,6 +34,8 @@ void FitProblem::Impl::build_model() {
                          "' has no adjoint (learning differentiates the paper's step, damping in "
                          "the force sum); set it to \"explicit\" to fit this scene");
   base.net = scene.build_network();
+  base.integrator = s.integrator;
+  base.iterations = s.iterations;
   // The scene's modules in the order Scene::make_simulation runs them, and
   // which declaration each one came from.
   std::vector<std::pair<int, std::shared_ptr<const ConstraintModule>>> constraints;

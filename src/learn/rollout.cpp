@@ -10,6 +10,7 @@
 #endif
 
 #include "core/integrators/integrator.h"
+#include "core/integrators/projective.h"
 #include "core/io/physical_limits.h"
 #include "core/scene/scene.h"
 
@@ -79,6 +80,11 @@ struct Rollout::Tape {
   ClothState adj;
   ForceInputs inputs;
   std::unique_ptr<Integrator> integrator;
+  // A projective run's integrator (the fit's hooks, projective.h), and
+  // dE/d(the Chebyshev rate its run measured), carried back to that step.
+  ProjectiveIntegrator* projective = nullptr;
+  double rate_adjoint = 0;
+  IntegratorKind kind = IntegratorKind::network;
 };
 
 Rollout::Rollout(ClothState initial, StepPlan steps, ObservationPlan observations,
@@ -112,9 +118,10 @@ void Rollout::step_forward(const RolloutModel& m, std::size_t k, const ClothStat
   Tape& t = *tape_;
   t.inputs.time = steps_.start[k];
   const double h = steps_.size[k];
-  // As Simulation::fixed_step takes it: forces at the step's start, the
-  // integrator, then each constraint in order on the step's result.
-  m.net.net_forces(in, t.inputs, t.forces);
+  // As Simulation::fixed_step takes it: forces at the step's start (a large
+  // step makes its own), the integrator, then each constraint in order on the
+  // step's result.
+  if (t.integrator->reads_start_force()) m.net.net_forces(in, t.inputs, t.forces);
   t.integrator->step(m.net, t.inputs, in, t.forces, h, out);
   const StepSpan span{steps_.start[k], h};
   for (std::size_t j = 0; j < m.constraints.size(); ++j) {
@@ -200,6 +207,21 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
                                       g.friction.empty() ? nullptr : g.friction.data(),
                                       g.constraints[j].data());
   }
+  double* adj_w = g.inverse_mass.empty() ? nullptr : g.inverse_mass.data();
+  if (t.projective) {
+    t.projective->step_adjoint(net, t.inputs, in, h, k, adj, t.adj_force, g.springs, adj_w,
+                               t.rate_adjoint);
+    if (constrained)
+      for (std::size_t i = 0; i < n; ++i) {
+        adj.x[i] += t.adj_before.x[i];
+        adj.y[i] += t.adj_before.y[i];
+        adj.z[i] += t.adj_before.z[i];
+      }
+    for (std::size_t j = 0; j < net.force_modules.size(); ++j)
+      net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
+                                               g.force_modules[j].data());
+    return;
+  }
   const double* w = net.masses.inverse_mass.data();
   const double* free = net.masses.free.data();
   double* const lp[3] = {adj.x.data(), adj.y.data(), adj.z.data()};
@@ -222,7 +244,6 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
       for (std::size_t i = 0; i < n; ++i)
         lp[c][i] += lb[c][i];
   }
-  double* adj_w = g.inverse_mass.empty() ? nullptr : g.inverse_mass.data();
   if (adj_w) {
     net.net_forces(in, t.inputs, t.forces);
     for (std::size_t i = 0; i < n; ++i)
@@ -242,12 +263,13 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   const std::size_t C = m.constraints.size();
   const std::size_t n = m.net.node_count();
   if (initial_.size() != n) throw std::invalid_argument("rollout: state and model differ in size");
-  if (!t.integrator || t.forces.size() != n) {
-    t.integrator = make_integrator(IntegratorKind::network, m.net);
+  prepare_integrator(m);
+  if (t.forces.size() != n) {
     t.forces.resize(n);
     t.adj_force.resize(n);
     t.adj_before.resize(C ? n : 0);
   }
+  if (t.projective) t.projective->begin_fit_run(m.net, steps_.size[0]);
   // Everything on the tape when it fits; else segments of about sqrt(T) steps.
   const std::size_t state_bytes = initial_.allocated_bytes();
   const bool keep_all = !g || (T + 1 + T * C) * state_bytes <= budget_;
@@ -307,12 +329,15 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
     g->constraints[j].assign(m.constraints[j]->gradient_slots(), 0.0);
   if (!std::isfinite(E)) return E;
   t.adj.resize(n);
+  t.rate_adjoint = 0;
   for (std::size_t seg = (T + K - 1) / K; seg-- > 0;) {
     const std::size_t k0 = seg * K, k1 = std::min(T, k0 + K);
     if (!keep_all) {
       t.states[0] = t.checkpoints[seg];
-      for (std::size_t k = k0; k < k1; ++k)
+      for (std::size_t k = k0; k < k1; ++k) {
+        if (t.projective) t.projective->replay_next_step(k);  // the omegas it took
         step_forward(m, k, t.states[k - k0], t.states[k - k0 + 1], t.pre.data() + (k - k0) * C);
+      }
     }
     for (std::size_t k = k1; k-- > k0;) {
       add_loss_gradient(k + 1, t.adj);
@@ -324,6 +349,28 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
     g->initial = t.adj;
   }
   return E;
+}
+
+// The integrator a model runs, made again when the model's kind or size changes.
+void Rollout::prepare_integrator(const RolloutModel& m) {
+  Tape& t = *tape_;
+  const std::size_t n = m.net.node_count();
+  const bool same = t.integrator && t.kind == m.integrator && t.forces.size() == n &&
+                    (!t.projective || t.projective->iterations() == std::max(1, m.iterations));
+  if (same) return;
+  if (m.integrator != IntegratorKind::network && m.integrator != IntegratorKind::projective)
+    throw std::invalid_argument(std::string("rollout: integrator '") + to_string(m.integrator) +
+                                "' has no adjoint");
+  t.kind = m.integrator;
+  t.projective = nullptr;
+  if (m.integrator == IntegratorKind::projective) {
+    auto p = std::make_unique<ProjectiveIntegrator>(m.net, m.iterations);
+    t.projective = p.get();
+    t.integrator = std::move(p);
+  } else {
+    t.integrator = make_integrator(IntegratorKind::network, m.net);
+  }
+  t.forces.resize(0);  // sized by run()
 }
 
 void Rollout::set_initial(const ClothState& initial) {

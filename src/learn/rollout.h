@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/integrators/integrator.h"
 #include "core/network/cloth_network.h"
 #include "core/network/spring_adjoint.h"
 #include "learn/frame_loss.h"
@@ -25,6 +26,10 @@ namespace neurocloth {
 struct RolloutModel {
   ClothNetwork net;
   std::vector<std::shared_ptr<const ConstraintModule>> constraints;
+  // The step the run takes: the paper's network propagation, or `projective`
+  // with its iterations (projective.h: a fixed count, read backwards exactly).
+  IntegratorKind integrator = IntegratorKind::network;
+  int iterations = kDefaultProjectiveIterations;
 };
 
 // The steps a run takes, start time and size each: a fixed step, or the
@@ -109,6 +114,7 @@ class Rollout {
   void add_loss_gradient(std::size_t state_index, ClothState& adj) const;
   void step_backward(const RolloutModel& m, std::size_t k, const ClothState& in,
                      const ClothState* pre_constraints, ClothState& adj, RolloutGradients& g);
+  void prepare_integrator(const RolloutModel& m);
 
   ClothState initial_;
   StepPlan steps_;
