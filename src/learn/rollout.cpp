@@ -269,10 +269,18 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
     t.adj_force.resize(n);
     t.adj_before.resize(C ? n : 0);
   }
-  if (t.projective) t.projective->begin_fit_run(m.net, steps_.size[0]);
   // Everything on the tape when it fits; else segments of about sqrt(T) steps.
   const std::size_t state_bytes = initial_.allocated_bytes();
   const bool keep_all = !g || (T + 1 + T * C) * state_bytes <= budget_;
+  std::size_t iterate_bytes = 0;
+  if (t.projective) {
+    // A projective step's iterates on the tape too when they fit beside the
+    // states (the adjoint then need not run each step's iterations again).
+    iterate_bytes = T * t.projective->iterate_bytes_per_step();
+    if (!g || !keep_all || (T + 1 + T * C) * state_bytes + iterate_bytes > budget_)
+      iterate_bytes = 0;
+    t.projective->begin_fit_run(m.net, steps_.size[0], iterate_bytes > 0);
+  }
   const std::size_t K =
       keep_all
           ? T
@@ -306,7 +314,7 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   }
   if (tape_all) finish_tape();
   final_ = *cur;
-  std::size_t bytes = 0;
+  std::size_t bytes = iterate_bytes;
   for (const auto* list : {&t.checkpoints, &t.states, &t.pre})
     for (const ClothState& s : *list)
       bytes += s.allocated_bytes();

@@ -100,11 +100,7 @@ int ProjectiveIntegrator::iterate(const ClothNetwork& net, const ClothState& in,
   const int iterations = factored_ ? iterations_ : 0;
   const double* const replay = replay_;
   replay_ = nullptr;
-  if (keep) {
-    kept_x_.resize(static_cast<std::size_t>(iterations) + 1);
-    kept_xbar_.resize(static_cast<std::size_t>(iterations));
-    kept_x_[0] = x_;
-  }
+  if (keep) kept_x_.resize(static_cast<std::size_t>(iterations));
   if (!replay) chebyshev_.begin(iterations);
   const bool record = fit_run_ && !replay;
   for (int it = 0; it < iterations; ++it) {
@@ -122,13 +118,13 @@ int ProjectiveIntegrator::iterate(const ClothNetwork& net, const ClothState& in,
         d_omegas_.push_back(chebyshev_.d_omega());
       }
     }
-    if (keep) kept_xbar_[static_cast<std::size_t>(it)] = rhs_;
     for (std::size_t i = 0; i < x_.size(); ++i) {
       const double next = omega * (rhs_[i] - prev_[i]) + prev_[i];
       prev_[i] = x_[i];
       x_[i] = omega == 1 ? rhs_[i] : next;
     }
-    if (keep) kept_x_[static_cast<std::size_t>(it) + 1] = x_;
+    if (keep) kept_x_[static_cast<std::size_t>(it)] = x_;
+    if (record && tape_iterates_) iterate_tape_.insert(iterate_tape_.end(), x_.begin(), x_.end());
   }
   if (!replay) chebyshev_.end();
   if (record) {
@@ -177,7 +173,7 @@ void ProjectiveIntegrator::refactor_if_needed(const ClothNetwork& net, double h)
   factored_ = laplacian_.factor(L, node_weight_, spring_weight_, net.masses.free);
 }
 
-void ProjectiveIntegrator::begin_fit_run(const ClothNetwork& net, double h) {
+void ProjectiveIntegrator::begin_fit_run(const ClothNetwork& net, double h, bool tape_iterates) {
   fit_run_ = false;
   large_step_weights(net, h, node_weight_, spring_weight_);
   if (!laplacian_.same_as(node_weight_, spring_weight_, net.masses.free))
@@ -192,6 +188,8 @@ void ProjectiveIntegrator::begin_fit_run(const ClothNetwork& net, double h) {
   d_omegas_.clear();
   fit_steps_ = 0;
   measuring_step_ = SIZE_MAX;
+  tape_iterates_ = tape_iterates;
+  iterate_tape_.clear();
   replay_ = nullptr;
 }
 

@@ -40,7 +40,13 @@ class ProjectiveIntegrator final : public Integrator {
   // factor by conjugate gradient, exactly, as in a simulation), never
   // refactors until the next call, measures the rate afresh, and keeps every
   // step's omegas for the adjoint.
-  void begin_fit_run(const ClothNetwork& net, double h);
+  // With `tape_iterates`, the forward pass keeps every step's iterates
+  // (iterations() x 3 x nodes doubles a step: iterate_bytes_per_step) and
+  // the adjoint reads them instead of recomputing the step's iterations.
+  void begin_fit_run(const ClothNetwork& net, double h, bool tape_iterates = false);
+  std::size_t iterate_bytes_per_step() const {
+    return std::size_t(iterations_) * 3 * n_ * sizeof(double);
+  }
   // The next step() recomputes step k of the fit's run with the omegas it
   // took (a checkpointed segment's recomputation).
   void replay_next_step(std::size_t k) { replay_ = &omegas_[k * std::size_t(iterations_)]; }
@@ -114,8 +120,12 @@ class ProjectiveIntegrator final : public Integrator {
   int half_iteration_ = 0, last_iteration_ = 0;
   double d_rate_d_half_ = 0, d_rate_d_last_ = 0;
   const double* replay_ = nullptr;
-  // The iterates x^0..x^I and global answers xbar^0..xbar^I-1 of a kept step.
-  std::vector<std::vector<double>> kept_x_, kept_xbar_;
+  // The iterates x^1..x^I of a recomputed step, or of every step of the run
+  // (iterate_tape_, step k's from k * iterations_ * 3 n_).
+  std::vector<std::vector<double>> kept_x_;
+  bool tape_iterates_ = false;
+  std::vector<double> iterate_tape_;
+  std::vector<double> xbar_;  // a global answer, rebuilt from the iterates
   // The adjoint's scratch: dE/d(three consecutive iterates), dE/d(rhs), dE/dy.
   std::array<std::vector<double>, 3> lam_x_;
   std::vector<double> lam_r_, lam_y_, lam_base_, lam_p0_, lam_w_, lam_m_;

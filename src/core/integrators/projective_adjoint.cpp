@@ -37,11 +37,30 @@ void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInpu
   const std::vector<double>& free = net.masses.free;
   const double* const omegas = &omegas_[k * std::size_t(iterations_)];
   const double* const d_omegas = &d_omegas_[k * std::size_t(iterations_)];
-  // The step again, every iterate kept.
+  // The step's start again; its iterates from the tape, or the step again.
   refactor_if_needed(net, h);
   start_step(net, inputs, in, h);
-  replay_ = omegas;
-  const int I = iterate(net, in, h, nullptr, true);
+  const std::size_t per_step = std::size_t(iterations_) * N;
+  const bool taped = tape_iterates_ && iterate_tape_.size() >= (k + 1) * per_step;
+  if (!taped) replay_ = omegas;
+  const int I = taped ? iterations_ : iterate(net, in, h, nullptr, true);
+  // x^j, j = -1 .. I (x^-1 = x^0 = y).
+  auto x_of = [&](int j) -> const double* {
+    if (j <= 0) return y_.data();
+    const auto i = static_cast<std::size_t>(j - 1);
+    return taped ? iterate_tape_.data() + k * per_step + i * N : kept_x_[i].data();
+  };
+  // The global answer xbar^i, from x^i+1 = omega (xbar^i - x^i-1) + x^i-1 (exactly
+  // x^i+1 where omega is 1; to rounding elsewhere, whichever way the iterates came).
+  auto xbar_of = [&](int i) -> const double* {
+    const double omega = omegas[i];
+    if (omega == 1.0) return x_of(i + 1);
+    const double *next = x_of(i + 1), *prev = x_of(i - 1);
+    xbar_.resize(N);
+    for (std::size_t q = 0; q < N; ++q)
+      xbar_[q] = (next[q] - prev[q]) / omega + prev[q];
+    return xbar_.data();
+  };
   // The step that measured the rate: dE/d(rate) enters through the norms of
   // two of its updates, |xb^i - x^i| (chebyshev.h).
   const bool measuring = k == measuring_step_ && rate_adjoint != 0.0;
@@ -68,9 +87,8 @@ void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInpu
     const double omega = omegas[it];
     std::vector<double>& next = lam_of(it + 1);
     std::vector<double>& before = lam_of(it - 1);
-    const double* const xb = kept_xbar_[static_cast<std::size_t>(it)].data();
-    const double* const x_before =
-        it > 0 ? kept_x_[static_cast<std::size_t>(it) - 1].data() : y_.data();
+    const double* const xb = xbar_of(it);
+    const double* const x_before = x_of(it - 1);
     // x^i+1 = omega (xb - x^i-1) + x^i-1, and omega moves with the measured rate.
     double d_omega = 0;
     lam_r_.resize(N);
@@ -81,7 +99,7 @@ void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInpu
     }
     rate_adjoint += d_omega * d_omegas[it];
     if (measuring && (it == half_iteration_ || it == last_iteration_)) {
-      const double* const x_it = kept_x_[static_cast<std::size_t>(it)].data();
+      const double* const x_it = x_of(it);
       double norm = 0;
       for (std::size_t q = 0; q < N; ++q)
         norm += (xb[q] - x_it[q]) * (xb[q] - x_it[q]);
@@ -122,8 +140,7 @@ void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInpu
       }
     for (std::size_t q = 0; q < N; ++q)
       lam_base_[q] += lam_r_[q];
-    spring_targets_adjoint(L, kept_x_[static_cast<std::size_t>(it)].data(), in, h, lam_r_.data(),
-                           lam_of(it).data(), lam_p0_.data(), g);
+    spring_targets_adjoint(L, x_of(it), in, h, lam_r_.data(), lam_of(it).data(), lam_p0_.data(), g);
     std::fill(next.begin(), next.end(), 0.0);  // next holds x^it-2 from here
   }
   {
