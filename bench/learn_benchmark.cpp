@@ -77,9 +77,7 @@ void BM_FitGradient(benchmark::State& state) {
 // problem taken in turn (so a busy machine slows both alike), CPU time each;
 // ratio is the median over the pairs of gradient / forward. backward_ms is the
 // gradient's time beyond its forward run's (the tape, the adjoint run back).
-void BM_FitGradientRatio(benchmark::State& state) {
-  const Case c = make_case(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  FitProblem p(c.scene, c.reference, FitSettings{});
+void measure_gradient_ratio(benchmark::State& state, FitProblem& p) {
   const Eigen::VectorXd theta = p.initial();
   Eigen::VectorXd g;
   const auto cpu_ms = [] { return 1e3 * double(std::clock()) / CLOCKS_PER_SEC; };
@@ -102,6 +100,13 @@ void BM_FitGradientRatio(benchmark::State& state) {
   state.counters["gradient_ms"] = median(gradient);
   state.counters["backward_ms"] = median(gradient) - median(forward);
   state.counters["ratio"] = median(ratio);
+  state.counters["tape_MB"] = double(p.peak_tape_bytes()) / (1 << 20);
+}
+
+void BM_FitGradientRatio(benchmark::State& state) {
+  const Case c = make_case(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  FitProblem p(c.scene, c.reference, FitSettings{});
+  measure_gradient_ratio(state, p);
 }
 
 // A material in words: one gradient of the three linguistic inputs (the
@@ -188,28 +193,7 @@ Case make_projective_case(int n, double viscosity_factor = 1, double stiffness_f
 void BM_ProjectiveGradientRatio(benchmark::State& state) {
   const Case c = make_projective_case(static_cast<int>(state.range(0)));
   FitProblem p(c.scene, c.reference, FitSettings{});
-  const Eigen::VectorXd theta = p.initial();
-  Eigen::VectorXd g;
-  const auto cpu_ms = [] { return 1e3 * double(std::clock()) / CLOCKS_PER_SEC; };
-  std::vector<double> forward, gradient, ratio;
-  for (auto _ : state) {
-    const double t0 = cpu_ms();
-    benchmark::DoNotOptimize(p.loss(theta, nullptr));
-    const double t1 = cpu_ms();
-    benchmark::DoNotOptimize(p.loss(theta, &g));
-    const double t2 = cpu_ms();
-    forward.push_back(t1 - t0);
-    gradient.push_back(t2 - t1);
-    ratio.push_back((t2 - t1) / (t1 - t0));
-  }
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  state.counters["forward_ms"] = median(forward);
-  state.counters["gradient_ms"] = median(gradient);
-  state.counters["ratio"] = median(ratio);
-  state.counters["tape_MB"] = double(p.peak_tape_bytes()) / (1 << 20);
+  measure_gradient_ratio(state, p);
 }
 
 // A whole fit at scale: the spring constant and viscosity from the cloth's

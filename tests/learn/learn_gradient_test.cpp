@@ -272,24 +272,8 @@ TEST(LearnRollout, IsTheSimulationItDifferentiates) {
     b.module({{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}});
     b.module({{"type", "air_drag"}, {"rate", 0.3}});
     if (adaptive) b.solver("network", 0.002, true);
-    const Scene scene = b.parse();
-    const double T = 0.15;
-    ReferenceMotion ref;
-    ReferenceFrame f;
-    f.time = T;
-    for (int i = 0; i < 16; ++i) {
-      f.nodes.push_back(i);
-      f.positions.push_back(Vec3::Zero());
-    }
-    ref.frames.push_back(f);
-    FitProblem p(scene, ref, FitSettings{});
-    const double E = p.loss(p.initial(), nullptr);
-    Simulation sim = scene.make_simulation();
-    ASSERT_EQ(sim.advance(T), RunStatus::ok);
-    double expected = 0;
-    for (int i = 0; i < 16; ++i)
-      expected += 0.5 * sim.state().position(i).squaredNorm();
-    EXPECT_EQ(E, expected) << (adaptive ? "adaptive" : "fixed");
+    SCOPED_TRACE(adaptive ? "adaptive" : "fixed");
+    test::expect_fit_run_is_simulation(b.parse(), 0.15, 16);
   }
 }
 
@@ -348,17 +332,7 @@ TEST(LearnGradient, APointCloudsChamferDistanceEveryOption) {
 // Control (issue 28): a pin_motion's keyframe offsets and the initial velocity,
 // with the path's smoothness term, through a run where the pins move.
 TEST(LearnGradient, APinsPathAndTheInitialVelocity) {
-  SceneBuilder b(5, 4, 0.05);
-  b.pins(nlohmann::json::array({{0, 0}, {0, 3}})).material(80.0, 0.01, 0.08);
-  b.solver("network", 0.002);
-  b.module({{"type", "pin_motion"},
-            {"keyframes",
-             {{{"t", 0.0}, {"offset", {0, 0, 0}}},
-              {{"t", 0.1}, {"offset", {0.02, 0.01, -0.01}}},
-              {{"t", 0.17}, {"offset", {0.05, 0.03, 0.0}}},
-              {{"t", 0.5}, {"offset", {0.04, -0.02, 0.03}}}}}});
-  b.set("/cloth/initial_velocity", {0.1, 0.3, -0.2});
-  const Scene scene = b.parse();
+  const Scene scene = test::moving_pins("network", 0.002).parse();
   FitSettings s;
   s.params = {"pin_motion.keyframes", "initial_velocity", "spring_constant"};
   s.path_smoothness = 3.0;

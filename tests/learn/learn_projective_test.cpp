@@ -98,17 +98,7 @@ TEST(LearnProjective, ThroughAPlaneWithFrictionAndWind) {
 }
 
 TEST(LearnProjective, APinsPathAndTheInitialVelocity) {
-  SceneBuilder b(5, 4, 0.05);
-  b.pins(nlohmann::json::array({{0, 0}, {0, 3}})).material(80.0, 0.01, 0.08);
-  b.solver("projective", 0.02);
-  b.module({{"type", "pin_motion"},
-            {"keyframes",
-             {{{"t", 0.0}, {"offset", {0, 0, 0}}},
-              {{"t", 0.11}, {"offset", {0.02, 0.01, -0.01}}},
-              {{"t", 0.17}, {"offset", {0.05, 0.03, 0.0}}},
-              {{"t", 0.51}, {"offset", {0.04, -0.02, 0.03}}}}}});
-  b.set("/cloth/initial_velocity", {0.1, 0.3, -0.2});
-  const Scene scene = b.parse();
+  const Scene scene = test::moving_pins("projective", 0.02).parse();
   FitSettings s;
   s.params = {"pin_motion.keyframes", "initial_velocity", "spring_constant"};
   s.path_smoothness = 3.0;
@@ -120,24 +110,7 @@ TEST(LearnProjective, APinsPathAndTheInitialVelocity) {
 // At the scene's own weights the fit's run is the simulation's, to the bit:
 // the same factor, the same first (measuring) step, the same omegas after it.
 TEST(LearnProjective, TheFitsRunIsTheSimulations) {
-  const Scene scene = projective_hanging().parse();
-  const double T = 0.31;
-  ReferenceMotion ref;
-  ReferenceFrame f;
-  f.time = T;
-  for (int i = 0; i < 20; ++i) {
-    f.nodes.push_back(i);
-    f.positions.push_back(Vec3::Zero());
-  }
-  ref.frames.push_back(f);
-  FitProblem p(scene, ref, FitSettings{});
-  const double E = p.loss(p.initial(), nullptr);
-  Simulation sim = scene.make_simulation();
-  ASSERT_EQ(sim.advance(T), RunStatus::ok);
-  double expected = 0;
-  for (int i = 0; i < 20; ++i)
-    expected += 0.5 * sim.state().position(i).squaredNorm();
-  EXPECT_EQ(E, expected);
+  test::expect_fit_run_is_simulation(projective_hanging().parse(), 0.31, 20);
 }
 
 // The tape holds every state and every step's iterates (the default budget),
