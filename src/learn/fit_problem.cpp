@@ -75,6 +75,17 @@ void FitProblem::Impl::plan(const ReferenceMotion& ref) {
                      "the reference ends at t = " + show_number(duration) +
                          " s: " + show_number(duration / scene.solver.dt) +
                          " steps of the scene's dt; a fit runs at most 1e7");
+  // A projective run keeps every iteration's Chebyshev weight for its adjoint
+  // (16 bytes each), and each iteration is a solve: a plan of more iterations
+  // than this is refused before it allocates them.
+  if (base.integrator == IntegratorKind::projective &&
+      duration / scene.solver.dt * scene.solver.iterations > kMaxFitIterations)
+    throw InputError(scene.path, "solver.iterations",
+                     "fit: " + show_number(duration / scene.solver.dt) + " steps of " +
+                         std::to_string(scene.solver.iterations) +
+                         " projective iterations to reach t = " + show_number(duration) +
+                         " s; a fit runs at most 1e7 iterations: fewer iterations, larger "
+                         "steps or a shorter reference");
   StepPlan steps;
   try {
     steps = plan_steps(scene, duration);

@@ -37,6 +37,8 @@ struct RolloutModel {
 // A fit runs the scene to the reference's last frame many times: at most this
 // many steps (fixed, or the adaptive run's accepted steps).
 inline constexpr std::size_t kMaxFitSteps = 10000000;
+// And at most this many projective local-global iterations (steps x iterations).
+inline constexpr double kMaxFitIterations = 1e7;
 
 struct StepPlan {
   std::vector<double> start, size;

@@ -14,6 +14,7 @@
 #include "learn/optimizer.h"
 #include "learn/rollout.h"
 #include "support/gradient_check.h"
+#include "support/input_error_check.h"
 #include "support/recorded_reference.h"
 #include "support/scene_builder.h"
 
@@ -139,6 +140,18 @@ TEST(LearnProjective, TapedIteratesOrRecomputedStepsGiveTheSameGradient) {
     EXPECT_EQ(E, first_loss) << budget;
     EXPECT_EQ(g, first) << budget;
   }
+}
+
+// A run's every iteration keeps its weight for the adjoint: a plan of more
+// than 1e7 iterations is refused, before the scene's own run or any memory.
+TEST(LearnProjective, APlanOfTooManyIterationsIsRefusedByName) {
+  SceneBuilder b = projective_hanging(1000);
+  b.set("/solver/dt", 1e-4);
+  Scene scene = b.parse();
+  scene.path = "many.json";
+  ReferenceMotion ref = scattered_reference(scene, 10.0, 2);
+  test::expect_input_error([&] { FitProblem(scene, ref, FitSettings{}); }, "many.json", 0,
+                           "solver.iterations", {"100000 steps", "1000 projective", "1e7"});
 }
 
 // A 12 x 12 cloth pinned at two corners, falling into its sag in steps of
