@@ -5,6 +5,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
+#include "core/scene/scene.h"
 #include "learn/cloud_sequence.h"
 #include "learn/marker_csv.h"
 #include "learn/motion_recording.h"
@@ -76,6 +77,14 @@ ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
   if (cloud_file_kind(path) != CloudFileKind::none) return read_cloud_file(path, options);
   return parse_reference(read_text_file(path, "reference motion", kMaxReferenceBytes), path,
                          node_count);
+}
+
+std::vector<Vec3> file_order_positions(const Scene& scene) {
+  const ClothState start = scene.initial_state();
+  std::vector<Vec3> p(start.size());
+  for (std::size_t k = 0; k < p.size(); ++k)
+    p[k] = start.position(static_cast<std::size_t>(scene.topology.numbering.node(int(k))));
+  return p;
 }
 
 }  // namespace neurocloth

@@ -92,6 +92,10 @@ bool reference_position_ok(const Vec3& p);
 // naming the file, the line or byte offset and the field on any bad input.
 ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
                                const ReferenceOptions& options = {});
+// Where each of `scene`'s file nodes starts (a point cache's mesh is matched
+// against these: ReferenceOptions::scene_positions).
+struct Scene;
+std::vector<Vec3> file_order_positions(const Scene& scene);
 // The same on bytes already in memory; `path` names them in messages.
 ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
                                 std::size_t node_count);

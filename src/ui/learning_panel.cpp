@@ -24,10 +24,22 @@ void reference_section(PanelContext& ctx, LearningSession& s) {
   ImGui::SetNextItemWidth(280);
   ImGui::InputText("##reference", set.reference_path.data(), set.reference_path.size());
   ImGui::SameLine();
+  ImGui::BeginDisabled(!ctx.status.scene);
   if (ImGui::Button("Load##reference")) {
-    const std::string error = s.load_reference(set.reference_path.data(), ctx.scene.node_count());
+    const std::string error = s.load_reference(set.reference_path.data(), *ctx.status.scene);
     if (!error.empty()) ctx.messages.error = error;
   }
+  ImGui::EndDisabled();
+  // What a frame sequence or a point cache does not say itself.
+  ImGui::SetNextItemWidth(90);
+  ImGui::InputFloat("frames/s", &set.reference_fps, 0, 0, "%.4g");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a PLY / XYZ frame sequence's or a PC2 cache's (0: the file's own)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90);
+  ImGui::InputFloat("start, s", &set.reference_start, 0, 0, "%.4g");
+  ImGui::SetNextItemWidth(220);
+  ImGui::InputText("cache mesh (OBJ)", set.reference_mesh.data(), set.reference_mesh.size());
   if (!s.error().empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, kError);
     ImGui::TextWrapped("%s", s.error().c_str());
@@ -35,13 +47,16 @@ void reference_section(PanelContext& ctx, LearningSession& s) {
   }
   const auto& ref = s.reference();
   if (!ref) {
-    ImGui::TextDisabled("no reference: a recording (simulate --record) or a markers CSV");
+    ImGui::TextDisabled(
+        "no reference: a recording (simulate --record), a markers or cloud CSV,\n"
+        "a folder or %%04d pattern of PLY / XYZ frames, a PC2 / MDD cache");
     return;
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s: %s, %zu frames to %.3g s, %zu observed positions", ref->path.c_str(),
                      to_string(ref->source), ref->frames.size(),
                      ref->frames.empty() ? 0.0 : ref->frames.back().time, ref->observations());
+  if (!ref->note.empty()) ImGui::TextWrapped("%s", ref->note.c_str());
   ImGui::PopStyleColor();
   ImGui::Checkbox("show as ghost points", &set.show_ghosts);
   if (s.ghost_count() > 0) {
@@ -62,6 +77,18 @@ void fit_settings(LearningSession& s, bool running) {
         "as fit --params: spring_constant, shear_constant, bend_constant, viscosity,\n"
         "node_mass, friction, module parameters (air_drag.rate, wind.drag, ...),\n"
         "or a material in words' inputs (input.mass, input.elasticity, ...)");
+  if (s.reference() && s.reference()->is_cloud()) {
+    ImGui::Checkbox("one-sided (a partial view)", &set.one_sided);
+    const char* robust[] = {"squared", "Huber", "Cauchy"};
+    ImGui::SetNextItemWidth(110);
+    ImGui::Combo("distance", &set.robust, robust, 3);
+    if (set.robust != 0) {
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(110);
+      ImGui::SliderFloat("scale, m", &set.robust_scale, 1e-4f, 1.0f, "%.3g",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    }
+  }
   ImGui::Checkbox("online adaptation", &set.online);
   if (set.online) {
     ImGui::InputInt("window, steps", &set.window);

@@ -1,5 +1,6 @@
 #include "ui/learning_session.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -30,9 +31,15 @@ LearningSettings::LearningSettings() {
   copy_text(params, "spring_constant,viscosity");
 }
 
-std::string LearningSession::load_reference(const std::string& path, std::size_t node_count) {
+std::string LearningSession::load_reference(const std::string& path, const Scene& scene) {
   try {
-    reference_ = std::make_shared<const ReferenceMotion>(read_reference(path, node_count));
+    ReferenceOptions o;
+    o.fps = settings_.reference_fps;
+    o.start = settings_.reference_start;
+    o.mesh = settings_.reference_mesh.data();
+    o.scene_positions = file_order_positions(scene);
+    reference_ = std::make_shared<const ReferenceMotion>(
+        read_reference(path, scene.topology.rest_positions.size(), o));
   } catch (const std::exception& e) {
     error_ = std::string("reference not loaded: ") + e.what();
     return error_;
@@ -87,7 +94,13 @@ std::string LearningSession::start_fit(std::shared_ptr<const Scene> scene) {
   job.scene = std::move(scene);
   job.reference = reference_;
   job.settings.params = split_params(settings_.params.data());
+  job.settings.chamfer.one_sided = settings_.one_sided;
+  job.settings.chamfer.robust = static_cast<RobustLoss>(std::clamp(settings_.robust, 0, 2));
+  job.settings.chamfer.scale = settings_.robust_scale;
   if (job.settings.params.empty()) return "name at least one parameter to fit";
+  if (!(settings_.robust_scale > 0) || !(settings_.robust_scale <= 1e3))
+    return "robust scale " + std::to_string(settings_.robust_scale) +
+           " refused: a distance in m in (0, 1000]";
   job.method =
       settings_.optimizer == 1 ? OptimizerMethod::gradient_descent : OptimizerMethod::lbfgs;
   job.max_iterations = settings_.max_iterations;

@@ -20,6 +20,16 @@ namespace neurocloth {
 // The panel's own settings (plain values its widgets edit).
 struct LearningSettings {
   std::array<char, 512> reference_path{};
+  // As fit --reference-fps, --reference-start, --reference-mesh: a frame
+  // sequence's (PLY / XYZ files) or a PC2 cache's frames per second (0: not
+  // given), its first frame's time (s), a PC2 / MDD cache's OBJ mesh.
+  float reference_fps = 0;
+  float reference_start = 0;
+  std::array<char, 512> reference_mesh{};
+  // A point cloud's comparison, as fit --chamfer, --robust, --robust-scale.
+  bool one_sided = false;
+  int robust = 0;  // RobustLoss: none, huber, cauchy
+  float robust_scale = 0.01f;
   std::array<char, 512> params{};  // comma-separated, as `fit --params`
   int optimizer = 0;               // 0 lbfgs, 1 gradient descent
   int max_iterations = 30;
@@ -35,10 +45,12 @@ class LearningSession {
  public:
   explicit LearningSession(std::function<void(int)> on_row = {}) : worker_(std::move(on_row)) {}
 
-  // Reads a recording or markers CSV for a cloth of `node_count` nodes. On
-  // failure the reference loaded before stays, and the error (one line naming
-  // the file, line and field) is returned and kept in error().
-  std::string load_reference(const std::string& path, std::size_t node_count);
+  // Reads a reference for `scene`'s cloth (read_reference: a recording, a
+  // markers or cloud CSV, a PLY / XYZ frame sequence, a PC2 / MDD cache),
+  // with the settings' frame rate, start and mesh. On failure the reference
+  // loaded before stays, and the error (one line naming the file, line and
+  // field) is returned and kept in error().
+  std::string load_reference(const std::string& path, const Scene& scene);
   // The scene changed (a load): its nodes are not the reference's, so the
   // reference goes, and a fit of the old scene is stopped.
   void scene_changed();

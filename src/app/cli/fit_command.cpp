@@ -195,19 +195,6 @@ int exit_code(StopReason reason) {
 
 }  // namespace
 
-namespace {
-
-// Where each file node starts: what a point cache's mesh is matched against.
-std::vector<Vec3> scene_positions_in_file_order(const Scene& scene) {
-  const ClothState start = scene.initial_state();
-  std::vector<Vec3> p(start.size());
-  for (std::size_t k = 0; k < p.size(); ++k)
-    p[k] = start.position(static_cast<std::size_t>(scene.topology.numbering.node(int(k))));
-  return p;
-}
-
-}  // namespace
-
 // Checks the outputs against the scene's inputs first (check_fit_outputs).
 FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   check_fit_outputs(o, scene);
@@ -215,7 +202,7 @@ FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   ro.fps = o.reference_fps;
   ro.start = o.reference_start;
   ro.mesh = o.reference_mesh;
-  ro.scene_positions = scene_positions_in_file_order(scene);
+  ro.scene_positions = file_order_positions(scene);
   const ReferenceMotion reference =
       read_reference(o.reference, scene.topology.rest_positions.size(), ro);
   if (!reference.note.empty()) std::printf("reference: %s\n", reference.note.c_str());

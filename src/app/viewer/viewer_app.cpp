@@ -234,8 +234,14 @@ void ViewerApp::rules(const std::string& path) {
   if (!error.empty()) show_error(elapsed_, error);
 }
 
-void ViewerApp::reference(const std::string& path) {
-  const std::string error = learning_.load_reference(path, scene_info_.node_count());
+void ViewerApp::reference(const ScriptEvent& e) {
+  LearningSettings& s = learning_.settings();
+  s.reference_fps = static_cast<float>(e.fps);
+  s.reference_start = static_cast<float>(e.start);
+  copy_text(s.reference_mesh, e.mesh);
+  const auto scene = sim_.status().scene;
+  const std::string error = scene ? learning_.load_reference(e.name, *scene)
+                                  : std::string("reference not loaded: no scene is running");
   if (!error.empty()) show_error(elapsed_, error);
 }
 

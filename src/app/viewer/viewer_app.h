@@ -68,7 +68,7 @@ class ViewerApp : private ScriptPlayer::Target {
   void resize(int width, int height) override;
   void load(const std::string& path) override;
   void rules(const std::string& path) override;
-  void reference(const std::string& path) override;
+  void reference(const ScriptEvent& e) override;
   void fit(const ScriptEvent& event) override;
   void quit() override { quit_ = true; }
 

@@ -147,8 +147,13 @@ ScriptEvent read_event(const JsonFields& in, const nlohmann::json& e, const std:
     case Type::reference:
       if (ev.type == Type::screenshot)
         in.allow_only(e, field, {"t", "type", "path", "panels"});
+      else if (ev.type == Type::reference)
+        in.allow_only(e, field, {"t", "type", "path", "fps", "start", "mesh"});
       else
         in.allow_only(e, field, {"t", "type", "path"});
+      if (e.contains("fps")) ev.fps = in.number(at("fps"), name("fps"));
+      if (e.contains("start")) ev.start = in.number(at("start"), name("start"));
+      if (e.contains("mesh")) ev.mesh = in.string(at("mesh"), name("mesh"));
       ev.name = in.string(at("path"), name("path"));
       if (ev.name.empty()) in.fail(name("path"), "must not be empty");
       if (e.contains("panels")) ev.panels = in.boolean(at("panels"), name("panels"));

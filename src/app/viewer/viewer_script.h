@@ -42,6 +42,10 @@ struct ScriptEvent {
   bool online = false;
   int max_iterations = 0;
   std::string params;
+  // reference: `name` is the path; a frame sequence's or PC2 cache's frames
+  // per second and start (0: not given), a cache's OBJ mesh.
+  double fps = 0, start = 0;
+  std::string mesh;
 };
 
 struct Script {

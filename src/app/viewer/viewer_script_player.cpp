@@ -72,7 +72,7 @@ void ScriptPlayer::dispatch(const ScriptEvent& e, Target& target) {
       target.rules(e.name);
       break;
     case Type::reference:
-      target.reference(e.name);
+      target.reference(e);
       break;
     case Type::fit:
       target.fit(e);

@@ -24,7 +24,7 @@ class ScriptPlayer {
     virtual void resize(int width, int height) = 0;
     virtual void load(const std::string& path) = 0;
     virtual void rules(const std::string& path) = 0;
-    virtual void reference(const std::string& path) = 0;
+    virtual void reference(const ScriptEvent& e) = 0;
     virtual void fit(const ScriptEvent& event) = 0;
     virtual void quit() = 0;
   };

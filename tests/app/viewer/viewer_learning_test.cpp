@@ -99,6 +99,31 @@ TEST_F(Viewer, ARecordingIsShownAsGhostPointsBesideTheCloth) {
   EXPECT_GT(ghostly, 400);
 }
 
+// Another simulator's bake (tests/data/blender_swing: Blender's PC2 and OBJ):
+// without its frame rate it is refused by name and nothing is lost; with the
+// rate and the mesh it loads, matched to the nodes, and shows as ghosts.
+TEST_F(Viewer, APointCacheLoadsWithTheFrameRateAndMeshItDoesNotSay) {
+  SKIP_WITHOUT_XVFB();
+  const std::string dir = std::string(NEUROCLOTH_TEST_DATA) + "/blender_swing/";
+  const json report =
+      session(dir + "scene.json",
+              {event(0.02, "reference", {{"path", dir + "bake.pc2"}, {"mesh", dir + "bake.obj"}}),
+               event(0.04, "reference",
+                     {{"path", dir + "bake.pc2"}, {"fps", 30}, {"mesh", dir + "bake.obj"}}),
+               event(0.06, "quit")});
+  const json& errors = report["errors"];
+  ASSERT_EQ(errors.size(), 1u) << errors.dump(1);
+  const std::string first = errors[0]["message"];
+  EXPECT_NE(first.find("bake.pc2"), std::string::npos) << first;
+  EXPECT_NE(first.find("--reference-fps"), std::string::npos) << first;
+  const json& learning = report["learning"];
+  ASSERT_TRUE(learning["reference"].is_object()) << learning.dump(1);
+  EXPECT_EQ(learning["reference"]["source"], "point cache");
+  EXPECT_EQ(learning["reference"]["frames"], 31);
+  EXPECT_EQ(learning["ghosts"]["count"], 256);
+  EXPECT_TRUE(learning["error"].get<std::string>().empty());
+}
+
 TEST_F(Viewer, AFitToMarkersRunsOnItsWorkerAndItsResultReachesTheCloth) {
   SKIP_WITHOUT_XVFB();
   // Markers on every fifth node of a cloth 1.5 times as stiff as the scene's

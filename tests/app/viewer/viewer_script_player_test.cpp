@@ -28,7 +28,7 @@ class Recorder : public ScriptPlayer::Target {
   void resize(int, int) override { calls.push_back("resize"); }
   void load(const std::string& path) override { calls.push_back("load " + path); }
   void rules(const std::string& path) override { calls.push_back("rules " + path); }
-  void reference(const std::string& path) override { calls.push_back("reference " + path); }
+  void reference(const ScriptEvent& e) override { calls.push_back("reference " + e.name); }
   void fit(const ScriptEvent& e) override { calls.push_back("fit " + e.name); }
   void quit() override { calls.push_back("quit"); }
 };
