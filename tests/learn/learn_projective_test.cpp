@@ -114,6 +114,36 @@ TEST(LearnProjective, TheFitsRunIsTheSimulations) {
   test::expect_fit_run_is_simulation(projective_hanging().parse(), 0.31, 20);
 }
 
+// And at weights other than the scene's: a fit of one scene evaluated at
+// another's spring constant and viscosity runs what that scene's simulation
+// runs (its own Chebyshev rate measured, not the first scene's), to the bit.
+TEST(LearnProjective, TheFitsRunAtOtherWeightsIsThatSimulation) {
+  const Scene scene = projective_hanging().parse();
+  SceneBuilder other = projective_hanging();
+  other.material(160.0, 0.01, 0.02).set("/material/shear_constant", 30.0);
+  other.set("/material/bend_constant", 5.0);
+  const Scene moved = other.parse();
+  const double T = 0.31;
+  ReferenceMotion ref;
+  ReferenceFrame f;
+  f.time = T;
+  for (int i = 0; i < 20; ++i) {
+    f.nodes.push_back(i);
+    f.positions.push_back(Vec3::Zero());
+  }
+  ref.frames.push_back(f);
+  FitProblem p(scene, ref, FitSettings{});  // spring_constant, viscosity (log)
+  p.loss(p.initial(), nullptr);             // a run at the scene's weights first
+  const Eigen::VectorXd theta = Eigen::Vector2d(std::log(160.0), std::log(0.02));
+  const double E = p.loss(theta, nullptr);
+  Simulation sim = moved.make_simulation();
+  ASSERT_EQ(sim.advance(T), RunStatus::ok);
+  double expected = 0;
+  for (int i = 0; i < 20; ++i)
+    expected += 0.5 * sim.state().position(i).squaredNorm();
+  EXPECT_EQ(E, expected);
+}
+
 // The tape holds every state and every step's iterates (the default budget),
 // the states only (each step's iterations run again backwards), or segments
 // recomputed from checkpoints: the same gradient, bit for bit.
