@@ -447,12 +447,18 @@ TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
   std::printf("  %s\n", starts.said.c_str());
   const auto [k, v] = off(fit(problem, starts.starts, 100));
   std::printf("  keys off by %.3g m, velocity by %.3g m/s\n", k, v);
-  // Measured: 4.89e-3 m and 0.079 m/s. A rough loss amplifies last bits: the
-  // search's sums taken by Eigen's vector reductions gave 4.25e-3 and 0.179,
-  // and before the AVX-512 adjoint 4.45e-3 and 0.211. The search's own sums
-  // are plain loops now, the same in every build.
+  // A rough loss amplifies last bits, and the velocity most. Measured with the
+  // default x86-64 build: 4.79e-3 m and 0.170 m/s on this project's machine
+  // (a CPU with FMA), 4.38e-3 m and 0.227 m/s on an emulated x86-64 without
+  // FMA (qemu64), where the C library's exp and log (the search's weights,
+  // step size and normal samples, the fit's log-scaled values) run other
+  // code (docs/building.md, "The C library on other CPUs"). Before: a
+  // -march=native build on this machine 4.89e-3 and 0.079, with Eigen's
+  // vector reductions in the search 4.25e-3 and 0.179, and before the AVX-512
+  // adjoint 4.45e-3 and 0.211. The keys are the claim; the velocity bound is
+  // just above the worst of the two CPUs.
   EXPECT_LT(k, 5.2e-3);
-  EXPECT_LT(v, 0.09);
+  EXPECT_LT(v, 0.24);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "app/cli/commands.h"
 #include "app/cli/step_bench.h"
+#include "core/base/cpu_features.h"
 #include "core/io/input_error.h"
 
 namespace neurocloth {
@@ -90,7 +91,7 @@ int run_bench(const BenchOptions& o) {
   // The reference loop (step_bench.h), timed in the same runs: the ratio of
   // the two medians says what the step's layout buys under this run's load.
   // With float, the double step is timed in the same runs too, for the same
-  // reason; and with a kernel named, the other kernel where it is compiled in.
+  // reason; and with a kernel named, the other kernel where the CPU runs it.
   ReferenceStep reference(bench);
   std::optional<StepBench> in_double, in_other_kernel;
   if (in_float)
@@ -144,6 +145,7 @@ int run_bench(const BenchOptions& o) {
                           {"threads", o.threads},
                           {"precision", to_string(precision)},
                           {"kernel", to_string(kernel)},
+                          {"cpu_has_avx512", cpu_has_avx512()},
                           {"dt", bench.dt()},
                           {"steps", o.steps},
                           {"repeat", o.repeat},
@@ -166,10 +168,11 @@ int run_bench(const BenchOptions& o) {
     std::printf("%s\n", doc.dump(1).c_str());
   } else {
     std::printf(
-        "%dx%d cloth, %zu nodes, %zu springs, %s, %s springs, %s kernel, dt %.3g s, %d thread%s\n",
+        "%dx%d cloth, %zu nodes, %zu springs, %s, %s springs, %s kernel (CPU %s AVX-512), dt "
+        "%.3g s, %d thread%s\n",
         o.size, o.size, sim.network().node_count(), sim.network().spring_count(),
-        o.integrator.c_str(), to_string(precision), to_string(kernel), bench.dt(), o.threads,
-        o.threads == 1 ? "" : "s");
+        o.integrator.c_str(), to_string(precision), to_string(kernel),
+        cpu_has_avx512() ? "with" : "without", bench.dt(), o.threads, o.threads == 1 ? "" : "s");
     std::printf("  median of %d runs of %d steps: %.1f steps/s, %.3f ns per spring update\n",
                 o.repeat, o.steps, sps, ns);
     std::printf("  CPU time of the calling thread: %.3f ns per spring update\n", cpu_ns);

@@ -4,8 +4,10 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/cli/commands.h"
+#include "core/base/cpu_features.h"
 #include "core/io/input_error.h"
 #include "tradeoff/tradeoff_sweep.h"
 
@@ -140,7 +142,7 @@ int main(int argc, char** argv) {
                         "double (default), or float: the float spring layer timed beside the "
                         "double one in the same runs");
   bench_cmd->add_option("--kernel", bench.kernel,
-                        "Spring kernel: auto (default; avx512 where compiled in), portable or "
+                        "Spring kernel: auto (default; avx512 where the CPU has it), portable or "
                         "avx512; one named is timed beside the other in the same runs");
   bench_cmd->add_flag("--json", bench.json, "Print JSON");
 
@@ -260,6 +262,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;
+  }
+  // A mask of CPU features that cannot be read runs nothing (cpu_features.h).
+  if (const std::string cpu = disabled_cpu_features_error(); !cpu.empty()) {
+    std::fprintf(stderr, "error: %s\n", cpu.c_str());
+    return kExitUsage;
   }
   try {
     if (*simulate) return run_simulate(sim);

@@ -115,9 +115,9 @@ struct BenchOptions {
   // "double", or "float": the float step timed beside the double one in the
   // same runs (SolverSettings::precision).
   std::string precision = "double";
-  // "auto" (the default: AVX-512 where compiled in), "portable" or "avx512"
-  // (SolverSettings::kernel). A kernel named where both are compiled in is
-  // timed beside the other one in the same runs.
+  // "auto" (the default: AVX-512 where the CPU has it), "portable" or "avx512"
+  // (SolverSettings::kernel). A kernel named where both can run is timed
+  // beside the other one in the same runs.
   std::string kernel = "auto";
   bool json = false;
 };

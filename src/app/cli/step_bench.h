@@ -35,8 +35,8 @@ class StepBench {
  public:
   // `threads` share each sweep (SolverSettings::threads; the results do not
   // depend on it); `precision` is the spring layer's arithmetic and `kernel`
-  // the code that evaluates it (refused, std::invalid_argument, where it is
-  // not compiled in).
+  // the code that evaluates it (refused, std::invalid_argument, where the CPU
+  // cannot run it).
   StepBench(const Scene& scene, IntegratorKind integrator, int threads = 1,
             SpringPrecision precision = SpringPrecision::float64,
             SpringKernel kernel = SpringKernel::automatic);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 #include <optional>
+#include <string>
 
 #include "app/viewer/viewer_app.h"
 #include "app/viewer/viewer_options.h"
@@ -11,6 +12,7 @@
 #include "app/viewer/viewer_script.h"
 #include "app/viewer/viewer_sim_only.h"
 #include "app/viewer/viewer_window.h"
+#include "core/base/cpu_features.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
 #include "render/orbit_camera.h"
@@ -84,6 +86,11 @@ int run(const ViewerOptions& options) {
 int main(int argc, char** argv) {
   ViewerOptions options;
   if (const auto code = parse_viewer_options(argc, argv, options)) return *code;
+  // A mask of CPU features that cannot be read runs nothing (cpu_features.h).
+  if (const std::string cpu = disabled_cpu_features_error(); !cpu.empty()) {
+    std::fprintf(stderr, "neurocloth: %s\n", cpu.c_str());
+    return kViewerUsage;
+  }
   try {
     return run(options);
   } catch (const InputError& e) {

@@ -66,7 +66,7 @@ SparseMatrix assemble(const ClothNetwork& net, const ImplicitSystem& system, dou
 // A block that is not positive definite is replaced by the inverse of its
 // diagonal, or by the identity where that is not positive either. (Plain
 // loops, here and below: Eigen's dense kernels trip GCC 12's
-// -Wmaybe-uninitialized under -march=native.)
+// -Wmaybe-uninitialized when built for AVX-512, cmake/compiler_workarounds.cmake.)
 std::vector<double> block_inverses(const SparseMatrix& A) {
   const int nodes = A.cols() / 3;
   std::vector<double> blocks(9 * static_cast<std::size_t>(nodes), 0.0);

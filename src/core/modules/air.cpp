@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/portable_trig.h"
 #include "core/modules/module_factories.h"
 #include "core/network/cloth_network.h"
 
@@ -82,7 +83,9 @@ double gust_signal(double t, double period) {
   constexpr double kGolden = 1.6180339887498949;
   constexpr double kSqrt7 = 2.6457513110645907;
   const double phase = kTwoPi * t / period;
-  return 0.5 * std::sin(phase) + 0.3 * std::sin(kGolden * phase) + 0.2 * std::sin(kSqrt7 * phase);
+  // portable_sin: the same bits on every CPU, as the C library's sin is not.
+  return 0.5 * portable_sin(phase) + 0.3 * portable_sin(kGolden * phase) +
+         0.2 * portable_sin(kSqrt7 * phase);
 }
 
 // Below these the force is zero to rounding (it scales with |u|^2, resp. the

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/portable_trig.h"
 #include "core/modules/module_factories.h"
 #include "core/network/cloth_network.h"
 
@@ -83,8 +84,9 @@ class PinMotion final : public ConstraintModule {
     const auto& keys = spec_.keyframes;
     if (keys.empty()) {
       const double w = kTwoPi * spec_.frequency;
-      offset = spec_.amplitude * std::sin(w * t);
-      velocity = spec_.amplitude * (w * std::cos(w * t));
+      // The same bits on every CPU (portable_trig.h), as std::sin's are not.
+      offset = spec_.amplitude * portable_sin(w * t);
+      velocity = spec_.amplitude * (w * portable_cos(w * t));
       return;
     }
     velocity = Vec3::Zero();

@@ -9,9 +9,10 @@
 #include <type_traits>
 
 #include "core/network/position_neuron.h"
-#include "core/network/spring_chunk_avx512.h"
 #include "core/network/spring_chunks.h"
 #include "core/network/spring_kernel.h"
+#include "core/network/spring_kernel_avx512.h"
+#include "core/network/spring_sweep.h"
 
 namespace neurocloth {
 
@@ -92,19 +93,9 @@ using namespace spring_chunks;
 // Direct == false: store them in fx, fy, fz for accumulate_chunk.
 // T is the force neurons' arithmetic (SpringPrecision): with float, the ends'
 // differences are rounded to float and the outputs widened back to double.
-// Hand: the same chunk through the AVX-512 kernel (SpringKernel::avx512);
-// instantiated only where it is compiled in.
-template <SpringFunctionKind K, bool Direct, typename T, bool Hand, bool Damped>
+template <SpringFunctionKind K, bool Direct, typename T, bool Damped>
 void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t count, std::int32_t a,
                      std::int32_t b, const ClothState& s, double* fx, double* fy, double* fz) {
-  static_assert(!Hand || kHandVectorised, "the AVX-512 kernel is not compiled in");
-#if defined(NEUROCLOTH_HAND_VECTORISED)
-  if constexpr (Hand) {
-    propagate_chunk_avx512<K, Direct, T, Damped>(L, first, count, a, b, s, kMinSpringLength, fx, fy,
-                                                 fz);
-    return;
-  }
-#endif
   const double* xa = s.x.data() + a;
   const double* ya = s.y.data() + a;
   const double* za = s.z.data() + a;
@@ -159,79 +150,45 @@ void propagate_chunk(const SpringLayer& L, std::int32_t first, std::int32_t coun
   }
 }
 
-// The spring layer's contributions to the acceleration neurons of nodes
-// [lo, hi): every chunk that writes one of them, in the one chunk order. A
-// chunk wholly inside adds its outputs directly (or through accumulate_chunk);
-// a chunk that crosses lo or hi is evaluated by every part it touches, and
-// each adds only to its own nodes (step_threads.h).
-template <SpringFunctionKind K, typename T, bool Hand, bool Damped>
-void propagate_part(const ClothNetwork& net, const ClothState& s, NodeVectors& F, std::int32_t lo,
-                    std::int32_t hi) {
-  Chunk chunk;
-  const std::array<double*, 3> dst{F.x.data(), F.y.data(), F.z.data()};
-  for_each_chunk(net.springs, [&](std::int32_t first, std::int32_t count, std::int32_t a,
-                                  std::int32_t b, bool direct) {
-    const bool a_inside = a >= lo && a + count <= hi;
-    const bool b_inside = b >= lo && b + count <= hi;
-    if (direct && a_inside && b_inside) {
-      propagate_chunk<K, true, T, Hand, Damped>(net.springs, first, count, a, b, s, F.x.data() + a,
-                                                F.y.data() + a, F.z.data() + a);
-      return;
-    }
-    const bool touches = (a < hi && a + count > lo) || (b < hi && b + count > lo);
-    if (!touches) return;
-#if defined(NEUROCLOTH_HAND_VECTORISED)
-    // A row's neighbours inside this part: summed in registers (same bits).
-    const std::int32_t o = b - a;
-    if constexpr (Hand) {
-      if ((o == 1 || o == 2) && o < count && a >= lo && b + count <= hi) {
-        if (o == 1)
-          propagate_row_avx512<K, T, 1, Damped>(net.springs, first, count, a, s, kMinSpringLength,
-                                                F.x.data() + a, F.y.data() + a, F.z.data() + a);
-        else
-          propagate_row_avx512<K, T, 2, Damped>(net.springs, first, count, a, s, kMinSpringLength,
-                                                F.x.data() + a, F.y.data() + a, F.z.data() + a);
-        return;
-      }
-    }
-#endif
-    propagate_chunk<K, false, T, Hand, Damped>(net.springs, first, count, a, b, s, chunk.fx,
-                                               chunk.fy, chunk.fz);
-    accumulate_chunk(count, a, b, chunk.fx, chunk.fy, chunk.fz, dst, lo, hi);
-  });
-}
+// The portable kernel as spring_sweep.h's policy: no row path.
+template <SpringFunctionKind K, typename T, bool Damped>
+struct PortableChunks {
+  const SpringLayer& L;
+  const ClothState& s;
+  void direct(std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, double* fx,
+              double* fy, double* fz) const {
+    propagate_chunk<K, true, T, Damped>(L, first, count, a, b, s, fx, fy, fz);
+  }
+  bool row(std::int32_t, std::int32_t, std::int32_t, std::int32_t, std::int32_t, std::int32_t,
+           double*, double*, double*) const {
+    return false;
+  }
+  void store(std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, double* fx,
+             double* fy, double* fz) const {
+    propagate_chunk<K, false, T, Damped>(L, first, count, a, b, s, fx, fy, fz);
+  }
+};
 
-template <SpringFunctionKind K, typename T, bool Hand>
-void outputs_all(const ClothNetwork& net, const ClothState& s, SpringActivations& act) {
-  for_each_chunk(net.springs,
-                 [&](std::int32_t first, std::int32_t count, std::int32_t a, std::int32_t b, bool) {
-                   propagate_chunk<K, false, T, Hand, true>(
-                       net.springs, first, count, a, b, s, act.fx.data() + first,
-                       act.fy.data() + first, act.fz.data() + first);
-                 });
-}
-
-// Calls fn(K, T, Hand) with the instantiation of the sweep that evaluates
-// springs of `kind` in `precision` with `kernel`: K and Hand as
-// std::integral_constant, T as a value of the arithmetic's type. Throws (before
-// any work) when `kernel` is not compiled in (spring_kernel.h).
+// Calls fn(chunks) with the portable policy that evaluates springs of `kind`
+// in `precision`, with or without the damping term.
 template <typename Fn>
-void with_spring_sweep(SpringFunctionKind kind, SpringPrecision precision, SpringKernel kernel,
-                       Fn&& fn) {
-  [[maybe_unused]] const bool hand = resolved(kernel) == SpringKernel::avx512;
-  const auto by_kernel = [&](auto k, auto t) {
-    if constexpr (kHandVectorised) {
-      if (hand) return fn(k, t, std::true_type{});
-    }
-    fn(k, t, std::false_type{});
+void with_portable_chunks(const ClothNetwork& net, const ClothState& s, SpringPrecision precision,
+                          bool damped, Fn&& fn) {
+  const auto by_damping = [&](auto k, auto t) {
+    constexpr SpringFunctionKind K = decltype(k)::value;
+    using T = decltype(t);
+    if (damped)
+      fn(PortableChunks<K, T, true>{net.springs, s});
+    else
+      fn(PortableChunks<K, T, false>{net.springs, s});
   };
   const auto by_precision = [&](auto k) {
     if (precision == SpringPrecision::float32)
-      by_kernel(k, float{});
+      by_damping(k, float{});
     else
-      by_kernel(k, double{});
+      by_damping(k, double{});
   };
-  if (kind == SpringFunctionKind::linear)
+  if (net.springs.function.kind == SpringFunctionKind::linear)
     by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::linear>{});
   else
     by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::stiffening>{});
@@ -261,20 +218,22 @@ void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F, std::si
 }
 
 void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
-  with_spring_sweep(springs.function.kind, in.precision, in.kernel, [&](auto k, auto t, auto hand) {
-    const auto sweep = [&](auto damped) {
+  // Resolved before any work: an avx512 the CPU cannot run throws here.
+  if (resolved(in.kernel) == SpringKernel::avx512) {
+    for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+      external_force(in, F, lo, hi);
+      spring_forces_avx512(*this, s, in.precision, in.spring_damping, F,
+                           static_cast<std::int32_t>(lo), static_cast<std::int32_t>(hi));
+    });
+  } else {
+    with_portable_chunks(*this, s, in.precision, in.spring_damping, [&](const auto& chunks) {
       for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
         external_force(in, F, lo, hi);
-        propagate_part<decltype(k)::value, decltype(t), decltype(hand)::value,
-                       decltype(damped)::value>(*this, s, F, static_cast<std::int32_t>(lo),
-                                                static_cast<std::int32_t>(hi));
+        propagate_part(springs, chunks, F, static_cast<std::int32_t>(lo),
+                       static_cast<std::int32_t>(hi));
       });
-    };
-    if (in.spring_damping)
-      sweep(std::true_type{});
-    else
-      sweep(std::false_type{});
-  });
+    });
+  }
   // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);
 }
@@ -313,10 +272,14 @@ int ClothNetwork::degenerate_springs(const ClothState& s) const {
 
 void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act,
                                   SpringPrecision precision, SpringKernel kernel) const {
-  with_spring_sweep(springs.function.kind, precision, kernel, [&](auto k, auto t, auto hand) {
-    act.resize(spring_count());
-    outputs_all<decltype(k)::value, decltype(t), decltype(hand)::value>(*this, s, act);
-  });
+  const bool avx512 = resolved(kernel) == SpringKernel::avx512;  // throws before any work
+  act.resize(spring_count());
+  if (avx512) {
+    spring_outputs_avx512(*this, s, precision, act);
+    return;
+  }
+  with_portable_chunks(*this, s, precision, true,
+                       [&](const auto& chunks) { outputs_all(springs, chunks, act); });
 }
 
 void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {

@@ -88,7 +88,7 @@ class ClothNetwork {
   // A spring shorter than kMinSpringLength contributes no force (no direction).
   // The springs' sweep is split over inputs.threads when it is set (the same
   // bits as on one thread, step_threads.h). Throws std::invalid_argument, before
-  // any work, when inputs.kernel is not compiled in (spring_kernel.h).
+  // any work, when the CPU cannot run inputs.kernel (spring_kernel.h).
   void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
   // The same with no external force, at time 0.
   void net_forces(const ClothState& state, NodeVectors& force) const;

@@ -12,19 +12,23 @@
 // differ from the portable loop's in the last place: runs through the two
 // kernels are compared in spring_kernel_test.cpp, and each kernel's forces
 // against the textbook formula in cloth_network_test.cpp (ClothNetworkKernel).
-// Compiled in only where the compiler targets AVX-512; which kernel runs is
-// chosen per evaluation (ForceInputs::kernel, spring_kernel.h). Internal to
-// the core.
+// Which kernel runs is chosen per evaluation (ForceInputs::kernel,
+// spring_kernel.h). Internal to the core.
 //
-// Their adjoint (spring_adjoint.cpp) starts from the same neurons
-// (Forces8::neurons) and sends its outputs to the nodes the same ways
-// (add_direct_avx512, add_row_avx512).
+// Included only inside an AVX-512 region (avx512_region.h), after the headers
+// below: by spring_forces_avx512.cpp, and by spring_adjoint_avx512.cpp, whose
+// adjoint starts from the same neurons (Forces8::neurons) and sends its
+// outputs to the nodes the same ways (add_direct_avx512, add_row_avx512).
+// Everything here is in an anonymous namespace on purpose: each region file
+// gets its own copy with internal linkage, so no symbol compiled for AVX-512
+// can stand in for a baseline one at link time.
 //
 // FloatForces8 is the same in float (SpringPrecision::float32). Both need
 // AVX-512 F and VL (the float lanes are 256-bit registers under AVX-512
 // masks): every AVX-512 CPU since Skylake-X has both.
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#define NEUROCLOTH_HAND_VECTORISED 1
+#if !defined(NEUROCLOTH_AVX512_REGION)
+#error "spring_chunk_avx512.h belongs inside an AVX-512 region on x86-64 (avx512_region.h)"
+#endif
 #include <immintrin.h>
 
 #include <cstdint>
@@ -35,8 +39,7 @@
 
 namespace neurocloth {
 namespace spring_chunks {
-
-constexpr bool kHandVectorised = true;
+namespace {
 
 inline __mmask8 first_lanes(std::int32_t n) {
   return n >= 8 ? __mmask8(0xFF) : __mmask8((1u << n) - 1u);
@@ -157,6 +160,13 @@ struct Forces8 : ChunkInputs {
   }
 };
 
+// Eight doubles rounded to floats. (A named function, not a captureless
+// lambda: the latter's function-pointer thunk is defined outside the region's
+// target and would pass vectors the baseline way.)
+inline __m256 narrow(__m512d v) {
+  return _mm512_maskz_cvtpd_ps(0xFF, v);
+}
+
 // Forces8's arithmetic in float (SpringPrecision::float32): the differences
 // of the ends' positions and velocities are taken in double and rounded,
 // everything after is float, and the outputs are widened back to double for
@@ -179,7 +189,6 @@ struct FloatForces8 : ChunkInputs {
   void operator()(std::int32_t k, __mmask8 m, __m512d (&g)[3]) const {
     // Masked-off lanes load zeros (a zero-length spring: no direction, no force).
     const auto at = [m, k](const double* p) { return _mm512_maskz_loadu_pd(m, p + k); };
-    const auto narrow = [](__m512d v) { return _mm512_maskz_cvtpd_ps(0xFF, v); };
     const auto diff = [&](const double* p) { return narrow(_mm512_sub_pd(at(p + offset), at(p))); };
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 dx = diff(px), dy = diff(py), dz = diff(pz);
@@ -261,6 +270,14 @@ template <int N, typename Outputs>
   }
 }
 
+// The vector whose lane j is lane j - O of the sequence before, now: before's
+// last O lanes, then now's first 8 - O. (Named, like narrow.)
+template <int O>
+inline __m512d shifted(__m512d now, __m512d before) {
+  return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),
+                                                       _mm512_castpd_si512(before), 8 - O));
+}
+
 // A chunk of neighbours in a row (b = a + O, O < count): node a + j receives
 // +g[j] - g[j - O]. The outputs never leave the registers: g[j - O] is the
 // vector before shifted by O lanes. Each node's sum is the expression
@@ -269,10 +286,6 @@ template <int O, int N, typename Outputs>
 [[gnu::always_inline]] inline void add_row_avx512(std::int32_t count, const Outputs& outputs,
                                                   double* const (&dst)[N]) {
   static_assert(O > 0 && O < 8, "a shift within one vector");
-  const auto shifted = [](__m512d now, __m512d before) {
-    return _mm512_castsi512_pd(_mm512_maskz_alignr_epi64(0xFF, _mm512_castpd_si512(now),
-                                                         _mm512_castpd_si512(before), 8 - O));
-  };
   __m512d last[N];
   for (int c = 0; c < N; ++c)
     last[c] = _mm512_setzero_pd();
@@ -284,7 +297,7 @@ template <int O, int N, typename Outputs>
       g[c] = _mm512_setzero_pd();
     if (k < count) outputs(k, springs, g);
     for (int c = 0; c < N; ++c) {
-      const __m512d before = shifted(g[c], last[c]);
+      const __m512d before = shifted<O>(g[c], last[c]);
       const __m512d f = _mm512_maskz_loadu_pd(nodes, dst[c] + k);
       // Nodes with a spring starting at them: f + (g[j] - g[j-O]) (g[j-O] is
       // zero before the first); the last O nodes: f - g[j-O].
@@ -296,36 +309,6 @@ template <int O, int N, typename Outputs>
   }
 }
 
-// propagate_chunk for AVX-512: Direct adds into fx.. (F + a, the b side at
-// b - a), otherwise stores the outputs in fx.. for accumulate_chunk.
-template <SpringFunctionKind K, bool Direct, typename T, bool Damped>
-void propagate_chunk_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
-                            std::int32_t a, std::int32_t b, const ClothState& s, double min_length,
-                            double* fx, double* fy, double* fz) {
-  const Forces<K, T, Damped> forces(L, first, count, a, b, s, min_length);
-  double* const dst[3] = {fx, fy, fz};
-  if constexpr (Direct)  // acceleration neurons: weight +1 at n_i1, -1 at n_i2
-    add_direct_avx512<3>(count, b - a, forces, dst);
-  else
-    store_avx512<3>(count, forces, dst);
-}
-
-// A row's chunk of neighbours (b = a + O) summed in registers (add_row_avx512).
-template <SpringFunctionKind K, typename T, int O, bool Damped>
-void propagate_row_avx512(const SpringLayer& L, std::int32_t first, std::int32_t count,
-                          std::int32_t a, const ClothState& s, double min_length, double* fx,
-                          double* fy, double* fz) {
-  const Forces<K, T, Damped> forces(L, first, count, a, a + O, s, min_length);
-  double* const dst[3] = {fx, fy, fz};
-  add_row_avx512<O, 3>(count, forces, dst);
-}
-
+}  // namespace
 }  // namespace spring_chunks
 }  // namespace neurocloth
-#else
-namespace neurocloth {
-namespace spring_chunks {
-constexpr bool kHandVectorised = false;
-}  // namespace spring_chunks
-}  // namespace neurocloth
-#endif

@@ -95,8 +95,10 @@ inline std::vector<SpringChunk> cut(const std::vector<SpringRun>& runs) {
 }
 
 // Calls fn(first, count, a, b, direct) for every chunk, in the layer's order.
+// Always inlined: an AVX-512 region's fn (avx512_region.h) can then be inlined
+// into the region's caller, which a baseline copy of this loop could not do.
 template <typename Fn>
-void for_each_chunk(const SpringLayer& L, Fn&& fn) {
+[[gnu::always_inline]] inline void for_each_chunk(const SpringLayer& L, Fn&& fn) {
   for (const SpringChunk& c : L.chunks)
     fn(c.first, c.count, c.node_a, c.node_b, c.direct);
 }

@@ -80,7 +80,7 @@ struct SolverSettings {
   // same springs in double, and learning differentiates the double step.
   SpringPrecision precision = SpringPrecision::float64;
   // Which code evaluates those force neurons (spring_kernel.h): automatic (the
-  // AVX-512 kernel where it is compiled in), or one named, so that a test or a
+  // AVX-512 kernel where the CPU has it), or one named, so that a test or a
   // benchmark runs the portable kernel on an AVX-512 machine too. Not a scene
   // field: a scene's results do not depend on it beyond the last bits.
   SpringKernel kernel = SpringKernel::automatic;

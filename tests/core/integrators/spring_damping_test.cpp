@@ -177,7 +177,7 @@ TEST(SpringDamping, ForcesWithoutTheDampingTermAreTheElasticForces) {
   for (std::size_t i = 0; i < still.size(); ++i)
     still.set_velocity(i, Vec3::Zero());
   std::vector<SpringKernel> kernels = {SpringKernel::portable};
-  if (avx512_kernel_compiled()) kernels.push_back(SpringKernel::avx512);
+  if (avx512_kernel_available()) kernels.push_back(SpringKernel::avx512);
   for (const SpringKernel kernel : kernels)
     for (const SpringPrecision precision : {SpringPrecision::float64, SpringPrecision::float32}) {
       ForceInputs undamped, damped;

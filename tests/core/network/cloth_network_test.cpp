@@ -1,8 +1,8 @@
 // The spring and mass layers against hand-computed forces and energies. Every
 // test that evaluates the force neurons runs through each spring kernel
-// (spring_kernel.h): the portable one on every build, the AVX-512 one where it
-// is compiled in (skipped elsewhere), so the loop a machine without AVX-512
-// runs is tested on one with it too.
+// (spring_kernel.h): the portable one on every CPU, the AVX-512 one where the
+// CPU has it (skipped elsewhere), so the loop a machine without AVX-512 runs
+// is tested on one with it too.
 #include "core/network/cloth_network.h"
 
 #include <gtest/gtest.h>
