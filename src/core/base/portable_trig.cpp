@@ -57,13 +57,9 @@ double reduce(double x, std::int64_t& quadrant) {
   return ((x - n * kHalfPi1) - n * kHalfPi2) - n * kHalfPi3;
 }
 
-}  // namespace
-
-double portable_sin(double x) {
-  if (!std::isfinite(x)) return x - x;  // NaN, without the C library
-  std::int64_t q = 0;
-  const double r = reduce(x, q);
-  switch (q) {
+// sin(q pi/2 + r): the quadrant's kernel and sign.
+double at_quadrant(std::int64_t q, double r) {
+  switch (q & 3) {
     case 0:
       return sin_kernel(r);
     case 1:
@@ -75,20 +71,20 @@ double portable_sin(double x) {
   }
 }
 
-double portable_cos(double x) {
+}  // namespace
+
+double portable_sin(double x) {
+  if (!std::isfinite(x)) return x - x;  // NaN, without the C library
+  std::int64_t q = 0;
+  const double r = reduce(x, q);
+  return at_quadrant(q, r);
+}
+
+double portable_cos(double x) {  // cos x = sin(x + pi/2): one quadrant on
   if (!std::isfinite(x)) return x - x;
   std::int64_t q = 0;
   const double r = reduce(x, q);
-  switch (q) {
-    case 0:
-      return cos_kernel(r);
-    case 1:
-      return -sin_kernel(r);
-    case 2:
-      return -cos_kernel(r);
-    default:
-      return sin_kernel(r);
-  }
+  return at_quadrant(q + 1, r);
 }
 
 }  // namespace neurocloth

@@ -169,31 +169,6 @@ struct PortableChunks {
   }
 };
 
-// Calls fn(chunks) with the portable policy that evaluates springs of `kind`
-// in `precision`, with or without the damping term.
-template <typename Fn>
-void with_portable_chunks(const ClothNetwork& net, const ClothState& s, SpringPrecision precision,
-                          bool damped, Fn&& fn) {
-  const auto by_damping = [&](auto k, auto t) {
-    constexpr SpringFunctionKind K = decltype(k)::value;
-    using T = decltype(t);
-    if (damped)
-      fn(PortableChunks<K, T, true>{net.springs, s});
-    else
-      fn(PortableChunks<K, T, false>{net.springs, s});
-  };
-  const auto by_precision = [&](auto k) {
-    if (precision == SpringPrecision::float32)
-      by_damping(k, float{});
-    else
-      by_damping(k, double{});
-  };
-  if (net.springs.function.kind == SpringFunctionKind::linear)
-    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::linear>{});
-  else
-    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::stiffening>{});
-}
-
 }  // namespace
 
 void ClothNetwork::other_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
@@ -226,13 +201,14 @@ void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVe
                            static_cast<std::int32_t>(lo), static_cast<std::int32_t>(hi));
     });
   } else {
-    with_portable_chunks(*this, s, in.precision, in.spring_damping, [&](const auto& chunks) {
-      for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
-        external_force(in, F, lo, hi);
-        propagate_part(springs, chunks, F, static_cast<std::int32_t>(lo),
-                       static_cast<std::int32_t>(hi));
-      });
-    });
+    with_kernel<PortableChunks>(
+        springs, s, in.precision, in.spring_damping, [&](const auto& chunks) {
+          for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+            external_force(in, F, lo, hi);
+            propagate_part(springs, chunks, F, static_cast<std::int32_t>(lo),
+                           static_cast<std::int32_t>(hi));
+          });
+        });
   }
   // The modules read whole arrays: after the parts, on this thread.
   add_module_forces(s, in, F);
@@ -278,8 +254,8 @@ void ClothNetwork::spring_outputs(const ClothState& s, SpringActivations& act,
     spring_outputs_avx512(*this, s, precision, act);
     return;
   }
-  with_portable_chunks(*this, s, precision, true,
-                       [&](const auto& chunks) { outputs_all(springs, chunks, act); });
+  with_kernel<PortableChunks>(springs, s, precision, true,
+                              [&](const auto& chunks) { outputs_all(springs, chunks, act); });
 }
 
 void ClothNetwork::accelerations(const NodeVectors& F, NodeVectors& a) const {

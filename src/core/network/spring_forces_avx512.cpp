@@ -58,42 +58,19 @@ struct Avx512Chunks {
   }
 };
 
-// Calls fn(chunks) with the policy for springs of `kind` in `precision`.
-template <typename Fn>
-void with_avx512_chunks(const ClothNetwork& net, const ClothState& s, SpringPrecision precision,
-                        bool damped, Fn&& fn) {
-  const auto by_damping = [&](auto k, auto t) {
-    constexpr SpringFunctionKind K = decltype(k)::value;
-    using T = decltype(t);
-    if (damped)
-      fn(Avx512Chunks<K, T, true>{net.springs, s});
-    else
-      fn(Avx512Chunks<K, T, false>{net.springs, s});
-  };
-  const auto by_precision = [&](auto k) {
-    if (precision == SpringPrecision::float32)
-      by_damping(k, float{});
-    else
-      by_damping(k, double{});
-  };
-  if (net.springs.function.kind == SpringFunctionKind::linear)
-    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::linear>{});
-  else
-    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::stiffening>{});
-}
-
 }  // namespace
 
 void spring_forces_avx512(const ClothNetwork& net, const ClothState& s, SpringPrecision precision,
                           bool damped, NodeVectors& F, std::int32_t lo, std::int32_t hi) {
-  with_avx512_chunks(net, s, precision, damped,
-                     [&](const auto& chunks) { propagate_part(net.springs, chunks, F, lo, hi); });
+  with_kernel<Avx512Chunks>(net.springs, s, precision, damped, [&](const auto& chunks) {
+    propagate_part(net.springs, chunks, F, lo, hi);
+  });
 }
 
 void spring_outputs_avx512(const ClothNetwork& net, const ClothState& s, SpringPrecision precision,
                            SpringActivations& act) {
-  with_avx512_chunks(net, s, precision, true,
-                     [&](const auto& chunks) { outputs_all(net.springs, chunks, act); });
+  with_kernel<Avx512Chunks>(net.springs, s, precision, true,
+                            [&](const auto& chunks) { outputs_all(net.springs, chunks, act); });
 }
 
 }  // namespace neurocloth

@@ -15,13 +15,41 @@
 // each instantiated on its own file's policy. Internal to the core.
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 #include "core/network/cloth_state.h"
 #include "core/network/spring_chunks.h"
 #include "core/network/spring_layer.h"
+#include "core/network/spring_precision.h"
 
 namespace neurocloth {
 namespace spring_chunks {
+
+// Calls fn(Kernel<K, T, Damped>{L, s}): the kernel's policy for springs of
+// L's kind (K), in `precision`'s arithmetic (T), with or without the damping
+// term (Damped), each a compile-time constant of its own instantiation.
+template <template <SpringFunctionKind, typename, bool> class Kernel, typename Fn>
+void with_kernel(const SpringLayer& L, const ClothState& s, SpringPrecision precision, bool damped,
+                 Fn&& fn) {
+  const auto by_damping = [&](auto k, auto t) {
+    constexpr SpringFunctionKind K = decltype(k)::value;
+    using T = decltype(t);
+    if (damped)
+      fn(Kernel<K, T, true>{L, s});
+    else
+      fn(Kernel<K, T, false>{L, s});
+  };
+  const auto by_precision = [&](auto k) {
+    if (precision == SpringPrecision::float32)
+      by_damping(k, float{});
+    else
+      by_damping(k, double{});
+  };
+  if (L.function.kind == SpringFunctionKind::linear)
+    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::linear>{});
+  else
+    by_precision(std::integral_constant<SpringFunctionKind, SpringFunctionKind::stiffening>{});
+}
 
 // The spring layer's contributions to the acceleration neurons of nodes
 // [lo, hi): every chunk that writes one of them, in the one chunk order. A
