@@ -2,7 +2,8 @@
 
     blender -b --factory-startup --python blender_cloth_drape.py -- \
         N QUALITY SECONDS FPS OUT.json [--spring K --shear K --bend B --damping C
-                                        --bend_damping D --distance M]
+                                        --bend_damping D --distance M
+                                        --shift_x DX --shift_z DZ]
 
 Builds the drape of assets/scenes/table_drape.json in an empty scene: an N x N
 vertex grid 1.2 m wide, 25 cm above a 0.8 x 0.8 x 0.75 m box (a collider),
@@ -12,7 +13,9 @@ for SECONDS. Writes OUT.json: the seconds spent stepping the frames (not
 Blender's startup), the settings used and the final vertex positions of the
 evaluated mesh, in neurocloth's frame (y up) and node order (row i along z,
 column j along x: node i * N + j), so bench/peers/run measures both sides'
-drapes with the same code.
+drapes with the same code. --shift_x/--shift_z move the cloth horizontally (m,
+in neurocloth's frame) before it falls: an ensemble member (bench/peers/run
+--ensemble).
 
 Units. Blender's cloth integrates in "frames": one frame advances its solver
 by time_scale units, and its gravity is the scene's times 0.001 (cloth_calc_force
@@ -62,10 +65,11 @@ def parse(argv):
     return o
 
 
-def grid_object(n):
+def grid_object(n, shift_x=0.0, shift_z=0.0):
     h = WIDTH / (n - 1)
     # neurocloth (x, y, z) with y up is Blender (x, -z, y) with z up.
-    verts = [(-0.6 + j * h, 0.6 - i * h, CLOTH_HEIGHT) for i in range(n) for j in range(n)]
+    verts = [(-0.6 + j * h + shift_x, 0.6 - i * h - shift_z, CLOTH_HEIGHT)
+             for i in range(n) for j in range(n)]
     faces = [(i * n + j, i * n + j + 1, (i + 1) * n + j + 1, (i + 1) * n + j)
              for i in range(n - 1) for j in range(n - 1)]
     mesh = bpy.data.meshes.new("cloth")
@@ -104,7 +108,7 @@ def main():
     scene.gravity = (0.0, 0.0, -9.81)
 
     table_object()
-    ob, h = grid_object(n)
+    ob, h = grid_object(n, o.get("shift_x", 0.0), o.get("shift_z", 0.0))
     mod = ob.modifiers.new("cloth", "CLOTH")
     s = mod.settings
     s.quality = o["quality"]

@@ -87,6 +87,11 @@ LogLogChart::LogLogChart(ChartSpec spec) : spec_(std::move(spec)) {
       ymin = std::min(ymin, r.y);
       ymax = std::max(ymax, r.y);
     }
+  for (const ChartBand& b : spec_.bands)
+    if (plottable(1, b.lo) && plottable(1, b.hi)) {
+      ymin = std::min(ymin, b.lo);
+      ymax = std::max(ymax, b.hi);
+    }
   if (xmax > 0) std::tie(x_lo_, x_hi_) = decades(xmin, xmax);
   if (ymax > 0) std::tie(y_lo_, y_hi_) = decades(ymin, ymax);
 }
@@ -160,6 +165,18 @@ void LogLogChart::write_png(std::ostream& out, const std::string& path) const {
   cairo_save(cr);
   cairo_rectangle(cr, kLeft, kTop, right - kLeft, bottom - kTop);
   cairo_clip(cr);
+  for (const ChartBand& b : spec_.bands) {
+    if (!plottable(1, b.lo) || !plottable(1, b.hi)) continue;
+    const double top = to_pixel(std::pow(10.0, x_lo_), b.hi).second;
+    const double low = to_pixel(std::pow(10.0, x_lo_), b.lo).second;
+    cairo_set_source_rgb(cr, 0.86, 0.90, 0.97);
+    cairo_rectangle(cr, kLeft, top, right - kLeft, std::max(low - top, 1.0));
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0.30, 0.38, 0.55);
+    cairo_set_font_size(cr, 11);
+    cairo_move_to(cr, right - 8 - 7 * static_cast<double>(b.label.size()), low - 4);
+    cairo_show_text(cr, b.label.c_str());
+  }
   const double dash[] = {6, 4};
   for (const ChartRule& r : spec_.rules) {
     if (!plottable(1, r.y)) continue;

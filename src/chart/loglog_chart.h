@@ -1,7 +1,7 @@
 #pragma once
 // A log-log line chart drawn with cairo into a PNG, no window or GPU needed:
 // decade ticks and labels, one coloured line with markers per series, some
-// points ringed (a Pareto front, say), dashed horizontal rules, a legend and a
+// points ringed (a Pareto front, say), dashed horizontal rules, shaded bands, a legend and a
 // title. Knows nothing of cloth; trade_chart.h feeds it.
 #include <iosfwd>
 #include <string>
@@ -31,11 +31,19 @@ struct ChartRule {
   std::string label;
 };
 
+// A shaded horizontal band across the plot, from y = lo to y = hi (e.g. a
+// spread no point below can be told from).
+struct ChartBand {
+  double lo = 0, hi = 0;
+  std::string label;
+};
+
 struct ChartSpec {
   std::string title, x_label, y_label;
   int width = 960, height = 600;  // pixels
   std::vector<ChartSeries> series;
   std::vector<ChartRule> rules;
+  std::vector<ChartBand> bands;  // drawn first, under everything
   // The ringed points joined by a dashed black line in x order, under this legend name
   // (empty: rings only, no line, no legend entry).
   std::string ring_legend;

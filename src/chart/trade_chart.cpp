@@ -37,7 +37,7 @@ Rgb line_colour(const TradeRow& row) {
   return {c.r * shade, c.g * shade, c.b * shade};
 }
 
-ChartSpec trade_chart_spec(const TradeTable& t) {
+ChartSpec trade_chart_spec(const TradeTable& t, Metric metric) {
   ChartSpec spec;
   char title[200];
   std::snprintf(title, sizeof title, "%s: error against cost (%g s simulated)", t.scene.c_str(),
@@ -45,9 +45,12 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
   spec.title = title;
   // The run's thread CPU time unless its step had threads (docs/tradeoff.md).
   spec.x_label = "seconds of compute per simulated second";
-  spec.y_label = "max position error / cloth size";
+  spec.y_label =
+      metric == Metric::node_max && !t.floor
+          ? "max position error / cloth size"
+          : std::string(to_string(metric)) + " to the ensemble / " + metric_meaning(metric);
   spec.ring_legend = "Pareto front";
-  const std::vector<std::size_t> front = pareto_front(t.rows);
+  const std::vector<std::size_t> front = pareto_front(t.rows, metric);
   // One series per line (a method, or projective at one iterations count), in
   // the order the lines first appear.
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
@@ -61,7 +64,7 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
       s = spec.series.end() - 1;
     }
     const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
-    s->points.push_back({r.wall_per_simulated_second, r.position_error_max, on_front});
+    s->points.push_back({r.wall_per_simulated_second, row_error(r, metric), on_front});
   }
   // A line none of whose settings finished still gets its legend entry, saying so.
   for (const TradeRow& r : t.rows)
@@ -74,17 +77,25 @@ ChartSpec trade_chart_spec(const TradeTable& t) {
   for (ChartSeries& s : spec.series)
     std::stable_sort(s.points.begin(), s.points.end(),
                      [](const ChartPoint& a, const ChartPoint& b) { return a.x < b.x; });
-  if (!t.reference.met && t.reference.change > 0)
+  if (t.floor && std::isfinite(t.floor->p90[slot(metric)])) {
+    char band[160];
+    std::snprintf(band, sizeof band, "the scene's own spread (%d references, %g mm shifts)",
+                  t.floor->members, 1000 * t.floor->shift);
+    spec.bands.push_back({t.floor->median[slot(metric)], t.floor->p90[slot(metric)], band});
+  }
+  // The resolution is the converged reference's, in node distance.
+  if (metric == Metric::node_max && !t.reference.met && t.reference.change > 0)
     spec.rules.push_back({t.reference.change, "reference resolution"});
   return spec;
 }
 
-void write_trade_chart(const TradeTable& trade, std::ostream& out, const std::string& name) {
-  LogLogChart(trade_chart_spec(trade)).write_png(out, name);
+void write_trade_chart(const TradeTable& trade, Metric metric, std::ostream& out,
+                       const std::string& name) {
+  LogLogChart(trade_chart_spec(trade, metric)).write_png(out, name);
 }
 
-void write_trade_chart(const TradeTable& trade, const std::string& path) {
-  LogLogChart(trade_chart_spec(trade)).write_png(path);
+void write_trade_chart(const TradeTable& trade, Metric metric, const std::string& path) {
+  LogLogChart(trade_chart_spec(trade, metric)).write_png(path);
 }
 
 }  // namespace neurocloth

@@ -1,8 +1,9 @@
 #pragma once
-// The trade's chart: max position error against seconds of compute per simulated
-// second, log-log, one line per method (projective: one per iterations count),
-// the Pareto front ringed and joined, the reference's resolution as a dashed
-// rule when it did not reach its target.
+// The trade's chart: the error in one metric against seconds of compute per
+// simulated second, log-log, one line per method (projective: one per
+// iterations count), the Pareto front ringed and joined, the scene's own spread
+// as a band (its references' median to 90th percentile, with an ensemble), the
+// reference's resolution as a dashed rule when it did not reach its target.
 #include <iosfwd>
 #include <string>
 
@@ -17,12 +18,13 @@ Rgb method_colour(const std::string& method);
 // implicit_euler's by its CG tolerance).
 Rgb line_colour(const TradeRow& row);
 
-ChartSpec trade_chart_spec(const TradeTable& trade);
+ChartSpec trade_chart_spec(const TradeTable& trade, Metric metric);
 
 // The chart as PNG bytes on `out`. Throws std::runtime_error naming `name`
 // (the file the bytes are for) when it cannot be drawn.
-void write_trade_chart(const TradeTable& trade, std::ostream& out, const std::string& name);
+void write_trade_chart(const TradeTable& trade, Metric metric, std::ostream& out,
+                       const std::string& name);
 // The chart as the PNG file `path`, whole or not at all.
-void write_trade_chart(const TradeTable& trade, const std::string& path);
+void write_trade_chart(const TradeTable& trade, Metric metric, const std::string& path);
 
 }  // namespace neurocloth

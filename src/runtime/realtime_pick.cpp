@@ -58,16 +58,21 @@ const TradeRow* measured_row(const SizedTrade& trade, int iterations, double dt)
 // those win then, leaving the window's renderer the most of the machine
 // (llvmpipe draws on the same cores).
 int least_measured_error(const SizedTrade& trade, int most, double dt) {
+  const Metric metric = default_metric(*trade.table);
   const TradeRow* least = nullptr;
   for (int it = 1; it <= most; ++it)
     if (const TradeRow* row = measured_row(trade, it, dt);
-        row && (!least || row->position_error_max < least->position_error_max))
+        row && (!least || row_error(*row, metric) < row_error(*least, metric)))
       least = row;
   if (!least) return most;
-  const double tie = reference_resolution(*trade.table);
+  // Below the scene's own spread (or, without an ensemble, within the
+  // reference's resolution of the least) errors cannot be told apart.
+  const double same =
+      trade.table->floor
+          ? std::max(row_error(*least, metric), trade.table->floor->p90[slot(metric)])
+          : row_error(*least, metric) + reference_resolution(*trade.table);
   for (int it = 1; it <= most; ++it)
-    if (const TradeRow* row = measured_row(trade, it, dt);
-        row && row->position_error_max <= least->position_error_max + tie)
+    if (const TradeRow* row = measured_row(trade, it, dt); row && row_error(*row, metric) <= same)
       return it;
   return least->iterations;
 }
@@ -78,6 +83,21 @@ std::string error_sentence(const RealtimePick& pick, const SizedTrade& trade, in
                            int halvings) {
   if (trade.path.empty()) return "";  // nobody looked for one
   const std::string grid = std::to_string(size) + " x " + std::to_string(size);
+  if (pick.measured && trade.table->floor) {
+    const TradeRow& row = *pick.measured;
+    const Metric metric = default_metric(*trade.table);
+    const double error = row_error(row, metric), spread = trade.table->floor->p90[slot(metric)];
+    char s[512];
+    std::snprintf(s, sizeof s,
+                  " Measured at %s: projective %d it., dt %s s: error %.2g%% (%s; spread %.2g%%) "
+                  "over its first %g s, %s the scene's own spread (%d references shifted %g mm), "
+                  "in %s.",
+                  grid.c_str(), row.iterations, step_name(halvings).c_str(), 100 * error,
+                  to_string(metric), 100 * spread, trade.table->seconds,
+                  error <= spread ? "within" : "outside", trade.table->floor->members,
+                  1000 * trade.table->floor->shift, pick.measured_in.c_str());
+    return s;
+  }
   if (pick.measured) {
     const TradeRow& row = *pick.measured;
     char s[512];

@@ -6,6 +6,20 @@
 
 namespace neurocloth {
 
+NodeDistances node_distances(const double* a, const double* b, const std::vector<char>& free) {
+  NodeDistances d;
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    if (!free[i]) continue;
+    const double dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1],
+                 dz = a[3 * i + 2] - b[3 * i + 2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    d.max = std::max(d.max, std::sqrt(d2));
+    d.sum2 += d2;
+    ++d.count;
+  }
+  return d;
+}
+
 double cloth_size(const ClothState& s) {
   if (s.size() == 0) return 0;
   Vec3 lo = s.position(0), hi = lo;
@@ -45,20 +59,14 @@ RunError compare_runs(const SampledRun& run, const SampledRun& reference, const 
   double sum2 = 0;
   long count = 0;
   for (std::size_t j = 0; j < run.positions.size(); ++j) {
-    double sample_max = 0;
     const std::vector<double>& p = run.positions[j];
     const std::vector<double>& q = reference.positions[j];
     if (p.size() != q.size() || p.size() != 3 * scale.free.size())
       throw std::invalid_argument("compare_runs: the runs have different node counts");
-    for (std::size_t i = 0; i < scale.free.size(); ++i) {
-      if (!scale.free[i]) continue;
-      const double dx = p[3 * i] - q[3 * i], dy = p[3 * i + 1] - q[3 * i + 1],
-                   dz = p[3 * i + 2] - q[3 * i + 2];
-      const double d2 = dx * dx + dy * dy + dz * dz;
-      sample_max = std::max(sample_max, std::sqrt(d2));
-      sum2 += d2;
-      ++count;
-    }
+    const NodeDistances d = node_distances(p.data(), q.data(), scale.free);
+    const double sample_max = d.max;
+    sum2 += d.sum2;
+    count += d.count;
     e.position_max_by_sample.push_back(sample_max / scale.size);
     e.position_max = std::max(e.position_max, sample_max);
     e.energy = std::max(e.energy, std::abs(run.energy[j] - reference.energy[j]));

@@ -2,6 +2,7 @@
 // How far a run landed from a reference, in numbers that mean the same on any
 // scene: positions relative to the cloth's size, energy relative to the work
 // gravity does dropping the whole cloth by its size (docs/tradeoff.md).
+#include <cmath>
 #include <vector>
 
 #include "tradeoff/sampled_run.h"
@@ -21,6 +22,15 @@ struct ErrorScale {
   double energy = 1;       // J
   std::vector<char> free;  // per node: 1 when the node is free (pinned nodes are not compared)
 };
+
+// Node by node between two states (x0 y0 z0 ... of free.size() nodes), over
+// the free ones: the largest distance and the sum of squares (m, m^2).
+struct NodeDistances {
+  double max = 0, sum2 = 0;
+  long count = 0;
+  double rms() const { return count ? std::sqrt(sum2 / static_cast<double>(count)) : 0.0; }
+};
+NodeDistances node_distances(const double* a, const double* b, const std::vector<char>& free);
 
 // Bounding-box diagonal of the nodes.
 double cloth_size(const ClothState& state);

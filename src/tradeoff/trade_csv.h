@@ -3,15 +3,14 @@
 // well the reference converged, one header line, one line per setting. Settings
 // (value, dt) are written with 17 digits so a picked setting is exactly the one
 // measured; measurements with 6. docs/tradeoff.md lists the columns.
+#include <cstddef>
 #include <string>
 
 #include "tradeoff/trade_table.h"
 
 namespace neurocloth {
 
-// The columns, in order. `iterations` and `linear_tolerance` may be absent
-// (files written before projective's iterations, or the implicit step's
-// tolerance, were swept): their rows then read as 0, the scene's own setting.
+// The columns, in order; the optional ones (below) may be absent.
 inline constexpr const char* kTradeColumns[] = {"method",
                                                 "parameter",
                                                 "value",
@@ -25,9 +24,24 @@ inline constexpr const char* kTradeColumns[] = {"method",
                                                 "wall_per_simulated_second",
                                                 "force_evaluations",
                                                 "rejected_steps",
-                                                "status"};
+                                                "status",
+                                                "ensemble_node_max",
+                                                "ensemble_node_rms",
+                                                "ensemble_surface_mean",
+                                                "ensemble_surface_max",
+                                                "ensemble_drape",
+                                                "ensemble_stretch",
+                                                "ensemble_energy"};
+// Where the ensemble's columns start: one per metric, in kAllMetrics' order.
+inline constexpr std::size_t kFirstEnsembleColumn = 14;
 
-inline constexpr const char* kOptionalTradeColumns[] = {"iterations", "linear_tolerance"};
+// Files written before projective's iterations, the implicit step's
+// tolerance or the ensemble lack these; their rows then read as 0 (the scene's
+// own setting) or NaN (not measured).
+inline constexpr const char* kOptionalTradeColumns[] = {
+    "iterations",        "linear_tolerance",      "ensemble_node_max",
+    "ensemble_node_rms", "ensemble_surface_mean", "ensemble_surface_max",
+    "ensemble_drape",    "ensemble_stretch",      "ensemble_energy"};
 
 // The "# key: value" lines that describe the measurement, each at most once
 // (sweep_stopped_by, one per stopped sweep, may repeat).
@@ -47,7 +61,14 @@ inline constexpr const char* kTradeMetadataKeys[] = {"scene",
                                                      "reference_stopped_by",
                                                      "reference_runs",
                                                      "reference_wall_seconds",
-                                                     "wall_seconds"};
+                                                     "wall_seconds",
+                                                     "ensemble",
+                                                     "ensemble_shift_m",
+                                                     "ensemble_seed",
+                                                     "ensemble_dt"};
+// With an ensemble, per metric M: "# floor_M: MEDIAN P90" over the pairs of
+// references and the run, and "# floor_M_median_by_sample: ..." and
+// "# floor_M_p90_by_sample: ..." at each compared time ("none": not measured).
 
 std::string trade_csv(const TradeTable& table);
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <iterator>
 #include <limits>
@@ -119,6 +120,9 @@ class TradeCsvParser {
     if (!have_header_)
       in_.fail("header", "no header line (" + std::string(kTradeColumns[0]) + ",...) found", line_);
     if (table_.rows.empty()) in_.fail("rows", "no settings after the header line", line_);
+    if (table_.floor && table_.floor->members == 0)
+      in_.fail("# ensemble",
+               "missing: the file has a floor but does not say of how many references", line_);
     return std::move(table_);
   }
 
@@ -195,7 +199,77 @@ class TradeCsvParser {
       t.sweep_stops.push_back(v.text);
     } else if (key == "wall_seconds") {
       t.wall_seconds = in_.real(v, field, line_, 0, false);
+    } else if (key == "ensemble") {
+      const long k = in_.count(v, field, line_, kMaxEnsemble);
+      if (k < kMinEnsemble)
+        in_.fail(field,
+                 "must be in [" + std::to_string(kMinEnsemble) + ", " +
+                     std::to_string(kMaxEnsemble) + "], got " + v.text,
+                 line_, v.column);
+      floor().members = static_cast<int>(k);
+    } else if (key == "ensemble_shift_m") {
+      const double d = in_.real(v, field, line_, 0, true);
+      if (d < kMinShift || d > kMaxShift)
+        in_.fail(field,
+                 "must be in [" + show_number(kMinShift) + ", " + show_number(kMaxShift) +
+                     "] m, got " + v.text,
+                 line_, v.column);
+      floor().shift = d;
+    } else if (key == "ensemble_seed") {
+      floor().seed = static_cast<std::uint64_t>(in_.count(v, field, line_));
+    } else if (key == "ensemble_dt") {
+      floor().member_dt = in_.real(v, field, line_, 0, true);
+    } else if (key.compare(0, 6, "floor_") == 0) {
+      floor_line(key, v, field);
     }
+  }
+
+  EnsembleFloor& floor() {
+    if (!table_.floor) table_.floor.emplace();
+    return *table_.floor;
+  }
+
+  // Space-separated figures >= 0, each or "none" (not measured).
+  std::vector<double> figures(const Field& v, const std::string& field) const {
+    std::vector<double> out;
+    for (std::size_t at = 0; at < v.text.size();) {
+      const std::size_t space = v.text.find(' ', at);
+      const std::size_t end = space == std::string::npos ? v.text.size() : space;
+      if (end > at)
+        out.push_back(in_.real({v.text.substr(at, end - at), v.column + static_cast<int>(at)},
+                               field, line_, 0, false, true));
+      at = end + 1;
+    }
+    return out;
+  }
+
+  // "floor_M: MEDIAN P90", "floor_M_median_by_sample: ..." or "floor_M_p90_by_sample: ...".
+  void floor_line(const std::string& key, const Field& v, const std::string& field) {
+    for (Metric m : kAllMetrics) {
+      const std::string base = std::string("floor_") + to_string(m);
+      if (key.compare(0, base.size(), base) != 0) continue;
+      const std::string rest = key.substr(base.size());
+      if (rest != "" && rest != "_median_by_sample" && rest != "_p90_by_sample") continue;
+      const auto [first, fresh] = seen_.emplace(key, line_);
+      if (!fresh)
+        in_.fail(field, "given twice (first at line " + std::to_string(first->second) + ")", line_,
+                 3);
+      const std::vector<double> f = figures(v, field);
+      EnsembleFloor& e = floor();
+      if (rest.empty()) {
+        if (f.size() != 2)
+          in_.fail(field, "must be MEDIAN P90, got '" + v.text + "'", line_, v.column);
+        e.median[slot(m)] = f[0];
+        e.p90[slot(m)] = f[1];
+        return;
+      }
+      auto& series = rest == "_median_by_sample" ? e.median_by_sample : e.p90_by_sample;
+      if (series.size() < f.size()) series.resize(f.size(), unmeasured_metrics());
+      for (std::size_t j = 0; j < f.size(); ++j)
+        series[j][slot(m)] = f[j];
+      return;
+    }
+    // Other "# floor_..." lines are comments, as any unknown key is.
   }
 
   // "ROWSxCOLS", each a whole number >= 2 (a grid has at least two nodes a side).
@@ -306,6 +380,10 @@ class TradeCsvParser {
         in_.real(f[10], "wall_per_simulated_second", line_, 0, false, nan_ok);
     r.force_evaluations = in_.count(f[11], "force_evaluations", line_);
     r.rejected_steps = in_.count(f[12], "rejected_steps", line_);
+    for (Metric m : kAllMetrics) {
+      const std::size_t c = kFirstEnsembleColumn + slot(m);
+      r.ensemble[slot(m)] = in_.real(f[c], kTradeColumns[c], line_, 0, false, true);
+    }
     return r;
   }
 

@@ -40,6 +40,11 @@ std::string number(double v, int digits) {
   return s;
 }
 
+// A floor's figure, or "none" where the metric was not measured (no support).
+std::string or_none(double v) {
+  return std::isfinite(v) ? number(v, 6) : "none";
+}
+
 // Text that must stay on its line and in its field.
 std::string one_line(std::string s) {
   for (char& c : s)
@@ -76,18 +81,40 @@ std::string trade_csv(const TradeTable& t) {
   s << "# reference_runs: " << r.runs << "\n";
   s << "# reference_wall_seconds: " << number(r.wall_seconds, 6) << "\n";
   s << "# wall_seconds: " << number(t.wall_seconds, 6) << "\n";
+  if (t.floor) {
+    const EnsembleFloor& f = *t.floor;
+    s << "# ensemble: " << f.members << "\n";
+    s << "# ensemble_shift_m: " << number(f.shift, 17) << "\n";
+    s << "# ensemble_seed: " << f.seed << "\n";
+    s << "# ensemble_dt: " << number(f.member_dt, 17) << "\n";
+    for (Metric m : kAllMetrics) {
+      const std::string key = std::string("# floor_") + to_string(m);
+      s << key << ": " << or_none(f.median[slot(m)]) << " " << or_none(f.p90[slot(m)]) << "\n";
+      s << key << "_median_by_sample:";
+      for (const MetricValues& v : f.median_by_sample)
+        s << " " << or_none(v[slot(m)]);
+      s << "\n" << key << "_p90_by_sample:";
+      for (const MetricValues& v : f.p90_by_sample)
+        s << " " << or_none(v[slot(m)]);
+      s << "\n";
+    }
+  }
   for (const std::string& stop : t.sweep_stops)
     s << "# sweep_stopped_by: " << one_line(stop) << "\n";
   for (std::size_t c = 0; c < std::size(kTradeColumns); ++c)
     s << (c ? "," : "") << kTradeColumns[c];
   s << "\n";
-  for (const TradeRow& row : t.rows)
+  for (const TradeRow& row : t.rows) {
     s << row.method << ',' << row.parameter << ',' << number(row.value, 17) << ','
       << number(row.dt, 17) << ',' << iterations_field(row.iterations) << ','
       << tolerance_field(row.linear_tolerance) << ',' << row.steps << ','
       << number(row.position_error_max, 6) << ',' << number(row.position_error_rms, 6) << ','
       << number(row.energy_error, 6) << ',' << number(row.wall_per_simulated_second, 6) << ','
-      << row.force_evaluations << ',' << row.rejected_steps << ',' << row.status << "\n";
+      << row.force_evaluations << ',' << row.rejected_steps << ',' << row.status;
+    for (Metric m : kAllMetrics)
+      s << ',' << number(row.ensemble[slot(m)], 6);
+    s << "\n";
+  }
   return s.str();
 }
 

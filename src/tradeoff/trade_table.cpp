@@ -1,9 +1,21 @@
 #include "tradeoff/trade_table.h"
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 namespace neurocloth {
+
+double row_error(const TradeRow& row, Metric metric) {
+  const double e = row.ensemble[slot(metric)];
+  if (!std::isnan(e) || metric != Metric::node_max) return e;
+  return row.position_error_max;
+}
+
+bool has_metric(const TradeTable& trade, Metric metric) {
+  return metric == Metric::node_max ||
+         (trade.floor && std::isfinite(trade.floor->p90[slot(metric)]));
+}
 
 SolverSettings settings_for(const TradeRow& row, SolverSettings base) {
   base.dt = row.dt;

@@ -4,11 +4,13 @@
 // safety factor), what it cost per simulated second and how far it landed from
 // the converged reference. The tradeoff command writes it (trade_csv.h);
 // `simulate --accuracy` and the viewer pick from it (accuracy_choice.h).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/simulation/solver_settings.h"
 #include "tradeoff/converged_reference.h"
+#include "tradeoff/ensemble.h"
 
 namespace neurocloth {
 
@@ -52,6 +54,10 @@ struct TradeRow {
   double position_error_max = 0;
   double position_error_rms = 0;
   double energy_error = 0;
+  // The distance to the ensemble in every metric (the median over its
+  // members, cloth_metrics.h); NaN when the trade has no ensemble (a file
+  // measured before it) or the run did not finish.
+  MetricValues ensemble = unmeasured_metrics();
   double wall_per_simulated_second = 0;
   long force_evaluations = 0;
   long rejected_steps = 0;
@@ -72,10 +78,19 @@ struct TradeTable {
   double energy_scale = 0;  // J
   ReferenceReport reference;
   double wall_seconds = 0;  // the whole measurement
+  // The scene's own spread (ensemble.h): absent in a trade measured without one.
+  std::optional<EnsembleFloor> floor;
   // Why each method's sweep stopped ("network: levels"), in sweep order.
   std::vector<std::string> sweep_stops;
   std::vector<TradeRow> rows;
 };
+
+// A row's error in `metric`: its distance to the ensemble, or, in a trade
+// without one, its max node error against the converged reference for
+// node_max (NaN for the other metrics: not measured).
+double row_error(const TradeRow& row, Metric metric);
+// Whether `trade` measured `metric` (node_max always; the others with an ensemble).
+bool has_metric(const TradeTable& trade, Metric metric);
 
 // The solver settings a row stands for, on top of the scene's own (`base`): the
 // one place a row becomes settings (`simulate --accuracy`, the viewer's slider).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -40,11 +41,25 @@ TradeRow row_from(const SampledRun& run, const SampledRun& reference, const Erro
 }
 
 std::string describe_row(const TradeRow& row) {
-  char s[256];
-  std::snprintf(s, sizeof s, "%s: %s, max error %.3g, rms %.3g, %.3g s per simulated s",
-                describe_setting(row).c_str(), row.status.c_str(), row.position_error_max,
-                row.position_error_rms, row.wall_per_simulated_second);
+  char s[320];
+  int n = std::snprintf(s, sizeof s, "%s: %s, max error %.3g, rms %.3g, %.3g s per simulated s",
+                        describe_setting(row).c_str(), row.status.c_str(), row.position_error_max,
+                        row.position_error_rms, row.wall_per_simulated_second);
+  const double surface = row.ensemble[slot(Metric::surface_mean)];
+  if (std::isfinite(surface) && n > 0 && static_cast<std::size_t>(n) < sizeof s)
+    std::snprintf(s + n, sizeof s - static_cast<std::size_t>(n),
+                  "; to the ensemble: node max %.3g, surface mean %.3g",
+                  row.ensemble[slot(Metric::node_max)], surface);
   return s;
+}
+
+// The members' step: the coarsest reference run within kMemberTolerance of the finest.
+SolverSettings member_settings(const ConvergedReference& ref, const ErrorScale& scale,
+                               std::size_t samples) {
+  for (const SampledRun& run : ref.coarser)  // coarsest first
+    if (run.complete(samples) && compare_runs(run, ref.run, scale).position_max <= kMemberTolerance)
+      return run.settings;
+  return ref.run.settings;
 }
 
 bool named(const TradeoffPlan& plan, const std::string& method) {
@@ -134,6 +149,8 @@ struct Sweep {
   const std::vector<double>& times;
   const ErrorScale& scale;
   const ConvergedReference& ref;
+  const MetricContext& metrics;
+  const Ensemble* ensemble;                             // null: none asked for
   const std::function<void(const std::string&)>* live;  // null: say() keeps it in the line
   Line& out;
 
@@ -144,11 +161,18 @@ struct Sweep {
       (*live)(s);
   }
 
+  // A finished run's distance to the ensemble, in every metric.
+  void to_ensemble(TradeRow& row, const SampledRun& run) const {
+    if (ensemble && run.complete(times.size()))
+      row.ensemble = distance_to_ensemble(trajectory(run, metrics), *ensemble, metrics);
+  }
+
   // Runs one setting and adds its row.
   TradeRow run_row(const SolverSettings& s, const std::string& method, const char* parameter,
                    double value, SampledRun& run) {
     run = run_sampled_timed(scene, s, times);
     TradeRow row = row_from(run, ref.run, scale, times.size());
+    to_ensemble(row, run);
     row.method = method;
     row.parameter = parameter;
     row.value = value;
@@ -180,6 +204,7 @@ struct Sweep {
   void rk4() {
     for (const SampledRun& run : ref.coarser) {
       TradeRow row = row_from(run, ref.run, scale, times.size());
+      to_ensemble(row, run);
       row.method = to_string(IntegratorKind::rk4);
       row.parameter = "dt";
       row.value = row.dt;
@@ -352,6 +377,9 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
   for (double dt : plan.steps)
     if (const std::string why = step_refusal(dt, plan.seconds / plan.samples); !why.empty())
       throw std::invalid_argument("step: " + why);
+  if (plan.ensemble.members != 0)
+    if (const std::string why = ensemble_refusal(plan.ensemble); !why.empty())
+      throw std::invalid_argument("ensemble: " + why);
   if (plan.workers < 0 || plan.workers > kMaxTradeoffWorkers)
     throw std::invalid_argument("workers must be in [0, " + std::to_string(kMaxTradeoffWorkers) +
                                 "] (0: one per core), got " + std::to_string(plan.workers));
@@ -378,6 +406,15 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
   const ConvergedReference ref = converge_reference(
       scene, times, scale, first_step(scene, IntegratorKind::rk4, interval), plan.reference, log);
   table.reference = ref.report;
+  const MetricContext metrics = metric_context(scene);
+  std::optional<Ensemble> ensemble;
+  if (plan.ensemble.members != 0) {
+    const SolverSettings member = member_settings(ref, scale, times.size());
+    ensemble = run_ensemble(
+        scene, times, member, plan.ensemble, metrics,
+        tradeoff_workers(plan.workers, static_cast<std::size_t>(plan.ensemble.members)), log);
+    table.floor = ensemble->floor;
+  }
 
   // Each line's stopping rules read only its own rows, so the lines can be
   // measured side by side; they are merged in method order whatever finishes first.
@@ -411,7 +448,15 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
       sweeps.size(), workers,
       [&](std::size_t i) {
         const Scene own = line_scene;
-        Sweep sweep{own, plan, times, scale, ref, workers > 1 ? nullptr : &log, lines[i]};
+        Sweep sweep{own,
+                    plan,
+                    times,
+                    scale,
+                    ref,
+                    metrics,
+                    ensemble ? &*ensemble : nullptr,
+                    workers > 1 ? nullptr : &log,
+                    lines[i]};
         sweeps[i](sweep);
       },
       [&](std::size_t i) {

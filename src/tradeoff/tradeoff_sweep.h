@@ -52,7 +52,17 @@ struct TradeoffPlan {
   // reference then, and for a lone line). The table does not depend on it but
   // for its cost figures. In [0, kMaxTradeoffWorkers].
   int workers = 0;
+  // The scene's own spread (ensemble.h): with members, every finished row is
+  // also measured in every metric against each member, and the table gets the
+  // floor. The members run RK4 at the coarsest of the reference's steps that
+  // lies within kMemberTolerance of its finest run (its finest when none does).
+  EnsemblePlan ensemble;
 };
+
+// How near the finest reference run a member's RK4 step must land (of the
+// cloth's size, at every compared time): far below any spread a shift of a
+// nanometre makes, so the members differ by their shifts, not their steps.
+inline constexpr double kMemberTolerance = 1e-6;
 
 inline constexpr int kMaxTradeoffWorkers = 64;
 
@@ -61,6 +71,7 @@ inline constexpr int kMaxTradeoffWorkers = 64;
 int tradeoff_workers(int workers, std::size_t lines);
 
 // Throws std::invalid_argument for a plan it cannot run (seconds <= 0, samples < 1,
+// an ensemble out of range,
 // an unknown method, projective with no iterations count or one out of range,
 // implicit_euler with no tolerance or one out of range, a step out of range or
 // not dividing the sample interval, workers out of range), std::runtime_error

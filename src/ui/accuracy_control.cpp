@@ -28,15 +28,19 @@ AccuracyTrade load_accuracy_trade(const std::string& scene_path, int resized_to)
   try {
     TradeTable table =
         resized_to > 0 ? read_sized_trade(t.path, resized_to) : read_trade_csv(t.path);
-    const auto best = most_accurate(table.rows);
+    const Metric metric = default_metric(table);
+    const auto best = most_accurate(table.rows, metric);
     if (!best) {
       t.note = t.path + ": no setting finished ok";
       return t;
     }
-    // Finer than the best measured setting, or than the reference could tell
-    // apart, cannot be vouched for.
-    t.finest = std::max(table.rows[*best].position_error_max, reference_resolution(table));
-    if (!std::isfinite(t.finest) || t.finest <= 0) t.finest = table.rows[*best].position_error_max;
+    // Finer than the best measured setting, than the scene's own spread, or
+    // (without an ensemble) than the reference could tell apart, cannot be
+    // vouched for.
+    const double best_error = row_error(table.rows[*best], metric);
+    t.finest = std::max(best_error,
+                        table.floor ? table.floor->p90[slot(metric)] : reference_resolution(table));
+    if (!std::isfinite(t.finest) || t.finest <= 0) t.finest = best_error;
     t.loosest = std::max(t.finest, kErrorBudgets[0]);
     t.table = std::move(table);
   } catch (const std::exception& e) {
@@ -52,9 +56,14 @@ AccuracyPick pick_for_accuracy(const AccuracyTrade& trade, double accuracy,
       choose_for_accuracy(*trade.table, trade.path, accuracy, scene_solver, "accuracy");
   AccuracyPick p;
   p.command = solver_command(c.settings);
-  char line[160];
-  std::snprintf(line, sizeof line, ": measured %.3g%% at %.3g wall s per s",
-                100 * c.row.position_error_max, c.row.wall_per_simulated_second);
+  char line[200];
+  if (std::isfinite(c.floor))
+    std::snprintf(line, sizeof line, ": error %.3g%% (%s; spread %.3g%%) at %.3g s per s",
+                  100 * c.error, to_string(c.metric), 100 * c.floor,
+                  c.row.wall_per_simulated_second);
+  else
+    std::snprintf(line, sizeof line, ": measured %.3g%% at %.3g wall s per s", 100 * c.error,
+                  c.row.wall_per_simulated_second);
   p.description = describe_setting(c.row) + line;
   return p;
 }

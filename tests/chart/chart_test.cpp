@@ -168,7 +168,7 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   t.rows = {row("network", 0.2, 0.05), row("network", 0.1, 0.1), row("rk4", 0.3, 0.001),
             row("rk4", 0.6, 0.002),
             row("explicit_euler", 0.1, std::numeric_limits<double>::quiet_NaN(), "diverged")};
-  const ChartSpec spec = trade_chart_spec(t);
+  const ChartSpec spec = trade_chart_spec(t, Metric::node_max);
   ASSERT_EQ(spec.series.size(), 3u);
   EXPECT_EQ(spec.series[0].name, "network");
   EXPECT_EQ(spec.series[1].name, "rk4");
@@ -180,7 +180,7 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   EXPECT_TRUE(spec.series[0].points[1].ringed);
   EXPECT_TRUE(spec.series[1].points[0].ringed);
   EXPECT_FALSE(spec.series[1].points[1].ringed);
-  EXPECT_EQ(pareto_front(t.rows).size(), 3u);
+  EXPECT_EQ(pareto_front(t.rows, Metric::node_max).size(), 3u);
   ASSERT_EQ(spec.rules.size(), 1u);
   EXPECT_EQ(spec.rules[0].y, 1e-4);
   EXPECT_NE(spec.title.find("hand"), std::string::npos);
@@ -195,7 +195,7 @@ TEST(TradeChart, OneColouredLinePerMethodWithTheParetoFrontRinged) {
   EXPECT_EQ(colours.size(), 6u);
 
   const std::string path = test::scratch_path("trade.png");
-  write_trade_chart(t, path);
+  write_trade_chart(t, Metric::node_max, path);
   const Picture pic(path);
   ASSERT_TRUE(pic.ok());
   const LogLogChart chart(spec);
@@ -215,7 +215,7 @@ TEST(TradeChart, ProjectiveHasALinePerIterationsCount) {
   const int iterations[] = {1, 4, 1, 4};
   for (std::size_t i = 0; i < t.rows.size(); ++i)
     t.rows[i].iterations = iterations[i];
-  const ChartSpec spec = trade_chart_spec(t);
+  const ChartSpec spec = trade_chart_spec(t, Metric::node_max);
   ASSERT_EQ(spec.series.size(), 2u);
   EXPECT_EQ(spec.series[0].name, "projective 1 it.");
   EXPECT_EQ(spec.series[1].name, "projective 4 it.");
@@ -239,7 +239,7 @@ TEST(TradeChart, ImplicitHasALinePerTolerance) {
   const double tolerances[] = {1e-10, 1e-3, 1e-10, 1e-3};
   for (std::size_t i = 0; i < t.rows.size(); ++i)
     t.rows[i].linear_tolerance = tolerances[i];
-  const ChartSpec spec = trade_chart_spec(t);
+  const ChartSpec spec = trade_chart_spec(t, Metric::node_max);
   ASSERT_EQ(spec.series.size(), 2u);
   EXPECT_EQ(spec.series[0].name, "implicit_euler tol 1e-10");
   EXPECT_EQ(spec.series[1].name, "implicit_euler tol 0.001");

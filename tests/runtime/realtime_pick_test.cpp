@@ -101,8 +101,10 @@ TradeRow projective_row(double dt, int iterations, double error) {
   return r;
 }
 
-// A trade measured at `grid` x `grid` with `rows`, written where a test can read it.
-std::string write_trade(const std::string& name, int grid, const std::vector<TradeRow>& rows) {
+// A trade measured at `grid` x `grid` with `rows`, written where a test can read it
+// (with `floor`: an ensemble whose spread is `floor` in every metric).
+std::string write_trade(const std::string& name, int grid, const std::vector<TradeRow>& rows,
+                        double floor = 0) {
   TradeTable t;
   t.scene = "table_drape";
   t.scene_file = kDrapeFile;
@@ -115,6 +117,15 @@ std::string write_trade(const std::string& name, int grid, const std::vector<Tra
   t.reference.change = 1e-3;
   t.reference.stopped_by = "budget";
   t.rows = rows;
+  if (floor > 0) {
+    EnsembleFloor f;
+    f.members = 8;
+    f.shift = 0.001;
+    f.member_dt = 1e-5;
+    f.median.fill(floor / 2);
+    f.p90.fill(floor);
+    t.floor = f;
+  }
   const std::string path = test::scratch_path(name);
   std::ofstream(path, std::ios::trunc) << trade_csv(t);
   return path;
@@ -157,6 +168,30 @@ TEST(RealtimePick, QuotesThePickedSettingsErrorMeasuredAtThisSize) {
   EXPECT_NE(pick.note.find("Measured at 8 x 8: projective 4 it., dt 1/60 s: max position error "
                            "7.5% of the cloth's size over its first 1 s (rms 1.9%; the reference "
                            "is good to 0.1%), in " +
+                           path),
+            std::string::npos)
+      << pick.note;
+}
+
+// With an ensemble the note quotes the error in the default metric and the
+// scene's own spread, and counts whose errors are all within that spread are a
+// tie won by the fewest iterations.
+TEST(RealtimePick, QuotesTheErrorAgainstTheScenesOwnSpread) {
+  std::vector<TradeRow> rows;
+  for (int it = 1; it <= 4; ++it) {
+    TradeRow r = projective_row(kRealtimeStep, it, 0.3 / it);
+    r.ensemble.fill(0.004 / it);  // 0.4%, 0.2%, 0.13%, 0.1%
+    rows.push_back(r);
+  }
+  const std::string path = write_trade("drape.8.csv", 8, rows, 0.0025);
+  FakeCosts costs{100.0, 0.1, 0.14, {}};  // 4 iterations fit, 5 do not
+  const RealtimePick pick =
+      pick_for_real_time(drape_at_8(), std::ref(costs), find_sized_trade(kDrapeFile, 8, path));
+  ASSERT_TRUE(pick.measured);
+  EXPECT_EQ(pick.picked.iterations, 2) << "2, 3 and 4 are within the spread; 1 is not";
+  EXPECT_NE(pick.note.find("Measured at 8 x 8: projective 2 it., dt 1/60 s: error 0.2% "
+                           "(energy; spread 0.25%) over its first 1 s, within the scene's "
+                           "own spread (8 references shifted 1 mm), in " +
                            path),
             std::string::npos)
       << pick.note;

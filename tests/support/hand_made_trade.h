@@ -47,4 +47,21 @@ inline TradeTable hand_made_trade() {
   return t;
 }
 
+// A trade of the shipped `hanging` scene over 0.5 s with a converged
+// reference and no rows yet: what the command-line tests add their rows to.
+inline TradeTable hanging_trade(const std::string& scene = "hanging") {
+  TradeTable t;
+  t.scene = scene;
+  t.scene_file = "assets/scenes/hanging.json";
+  t.seconds = 0.5;
+  t.samples = 4;
+  t.cloth_size = 1.34;
+  t.energy_scale = 52;
+  t.reference.dt = 1e-4;
+  t.reference.change = 1e-10;
+  t.reference.met = true;
+  t.reference.stopped_by = "target";
+  return t;
+}
+
 }  // namespace neurocloth::test

@@ -124,9 +124,9 @@ TEST(ProjectiveTrade, APickedProjectiveRowCarriesItsIterations) {
   // Another method's pick keeps the scene's iterations.
   EXPECT_EQ(choose_for_accuracy(t, "t.csv", 0.5, base).settings.iterations, 10);
 
-  const std::string md = trade_summary(t);
+  const std::string md = trade_summary(t, Metric::node_max);
   EXPECT_NE(md.find("| 10% | projective 4 it., dt 0.01562 s | 0.04 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("- projective 4 it., dt 0.01562 s: max error 0.04"), std::string::npos) << md;
+  EXPECT_NE(md.find("- projective 4 it., dt 0.01562 s: node_max 0.04"), std::string::npos) << md;
 
   TradeRow wrong = t.rows[0];  // network
   wrong.iterations = 4;

@@ -292,32 +292,32 @@ TEST(TradeoffSweep, RefusesAPlanItCannotRun) {
 // ---- Pareto front and picker, on hand-made tables ----
 
 TEST(TradeoffPareto, FrontHoldsWhatNothingBeatsCheapestFirst) {
-  EXPECT_EQ(pareto_front(hand_made()), (std::vector<std::size_t>{3, 0, 1, 5, 6}));
+  EXPECT_EQ(pareto_front(hand_made(), Metric::node_max), (std::vector<std::size_t>{3, 0, 1, 5, 6}));
 }
 
 TEST(TradeoffPareto, CheapestMeetingABudget) {
   const std::vector<TradeRow> rows = hand_made();
-  EXPECT_EQ(cheapest_meeting(rows, 1.0), 3u);
-  EXPECT_EQ(cheapest_meeting(rows, 0.1), 0u);    // the budget itself is met
-  EXPECT_EQ(cheapest_meeting(rows, 0.05), 1u);   // ties with 5: the earlier row
-  EXPECT_EQ(cheapest_meeting(rows, 0.002), 6u);  // same cost as 7, smaller error
-  EXPECT_EQ(cheapest_meeting(rows, 0.0005), std::nullopt);
-  EXPECT_EQ(most_accurate(rows), 6u);
+  EXPECT_EQ(cheapest_meeting(rows, 1.0, Metric::node_max), 3u);
+  EXPECT_EQ(cheapest_meeting(rows, 0.1, Metric::node_max), 0u);    // the budget itself is met
+  EXPECT_EQ(cheapest_meeting(rows, 0.05, Metric::node_max), 1u);   // ties with 5: the earlier row
+  EXPECT_EQ(cheapest_meeting(rows, 0.002, Metric::node_max), 6u);  // same cost as 7, smaller error
+  EXPECT_EQ(cheapest_meeting(rows, 0.0005, Metric::node_max), std::nullopt);
+  EXPECT_EQ(most_accurate(rows, Metric::node_max), 6u);
 }
 
 TEST(TradeoffPareto, EqualCostGoesToTheSmallerErrorWhicheverComesFirst) {
   std::vector<TradeRow> rows = {row("rk4", 2, 0.004), row("verlet", 2, 0.003)};
-  EXPECT_EQ(cheapest_meeting(rows, 0.01), 1u);
+  EXPECT_EQ(cheapest_meeting(rows, 0.01, Metric::node_max), 1u);
   std::swap(rows[0], rows[1]);
-  EXPECT_EQ(cheapest_meeting(rows, 0.01), 0u);
+  EXPECT_EQ(cheapest_meeting(rows, 0.01, Metric::node_max), 0u);
 }
 
 TEST(TradeoffPareto, NothingFinishedMeansNothingToPick) {
   const std::vector<TradeRow> rows = {row("rk4", 1, kNaN, "diverged"),
                                       row("verlet", 1, kNaN, "stopped")};
-  EXPECT_TRUE(pareto_front(rows).empty());
-  EXPECT_EQ(cheapest_meeting(rows, 1e9), std::nullopt);
-  EXPECT_EQ(most_accurate(rows), std::nullopt);
+  EXPECT_TRUE(pareto_front(rows, Metric::node_max).empty());
+  EXPECT_EQ(cheapest_meeting(rows, 1e9, Metric::node_max), std::nullopt);
+  EXPECT_EQ(most_accurate(rows, Metric::node_max), std::nullopt);
 }
 
 TEST(TradeoffAccuracy, PicksTheCheapestAndItsSettings) {
@@ -387,7 +387,7 @@ TEST(TradeoffAccuracy, CommittedTradesLiveUnderAssets) {
 
 TEST(TradeoffSummary, NamesTheCheapestForEveryBudget) {
   TradeTable t = hand_made_trade();
-  const std::string md = trade_summary(t, "chart.png");
+  const std::string md = trade_summary(t, Metric::node_max, "chart.png");
   EXPECT_NE(md.find("![error against cost](chart.png)"), std::string::npos);
   EXPECT_NE(md.find("| 10% | network, dt 0.001 s | 0.1 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 1% | verlet, dt 0.001 s | 0.01 |"), std::string::npos) << md;
@@ -398,7 +398,7 @@ TEST(TradeoffSummary, NamesTheCheapestForEveryBudget) {
   EXPECT_NE(md.find("target was **met**"), std::string::npos) << md;
   t.reference.met = false;
   t.reference.change = 0.003;
-  const std::string unmet = trade_summary(t);
+  const std::string unmet = trade_summary(t, Metric::node_max);
   EXPECT_NE(unmet.find("| 0.1% | not certified"), std::string::npos) << unmet;
   EXPECT_NE(unmet.find("**not met**"), std::string::npos) << unmet;
 }

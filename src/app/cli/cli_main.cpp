@@ -49,6 +49,12 @@ int main(int argc, char** argv) {
                    "The measured trade (tradeoff's CSV) --accuracy picks from; default "
                    "assets/tradeoff/<scene>.csv, else measured first")
       ->needs(accuracy);
+  simulate
+      ->add_option("--metric", sim.metric,
+                   "The error --accuracy is in: " + metric_names() +
+                       " (default: " + std::string(to_string(kDefaultMetric)) +
+                       " where the trade measured it, else node_max)")
+      ->needs(accuracy);
 
   simulate->add_option(
       "--record", sim.record,
@@ -124,6 +130,30 @@ int main(int argc, char** argv) {
                        "Method lines measured at once, 1 to " +
                            std::to_string(kMaxTradeoffWorkers) +
                            " (default: one per core; 1: one after another)");
+  tradeoff->add_option("--ensemble", trade.ensemble,
+                       "References of the scene's own spread, each the cloth shifted by "
+                       "--perturbation (default 8; 2 to 64)");
+  tradeoff->add_option("--perturbation", trade.perturbation,
+                       "Each reference's shift, in a seeded horizontal direction: 1mm (default), "
+                       "0.5um, 1e-6 (m); 1 nm to 5 cm");
+  tradeoff->add_option("--replot", trade.replot,
+                       "Measure nothing: write REPORT.png and REPORT.md of this trade CSV (of "
+                       "the scene) in --metric");
+  tradeoff->add_option("--metric", trade.metric,
+                       "The error the summary's budgets, front and chart use: " + metric_names() +
+                           " (default " + to_string(kDefaultMetric) + ")");
+
+  CompareOptions cmp;
+  auto* compare = app.add_subcommand(
+      "compare", "Every error metric between two results of one cloth, as JSON on stdout");
+  compare->add_option("a", cmp.a, "RESULT.json (simulate's, relax's, or bench/peers' Blender's)")
+      ->required();
+  compare->add_option("b", cmp.b, "RESULT.json of the same cloth")->required();
+  compare->add_option("--scene", cmp.scene,
+                      "The scene (its triangles, support and size); default: the results' own; "
+                      "given, it must have a box or sphere to drape over");
+  compare->add_option("--size", cmp.size,
+                      "The scene's cloth resized to N x N (default: from the node count)");
 
   RelaxOptions rel;
   auto* relax = app.add_subcommand("relax", "Propagate to the local energy minimum (static drape)");
@@ -272,6 +302,7 @@ int main(int argc, char** argv) {
     if (*simulate) return run_simulate(sim);
     if (*tradeoff) return run_tradeoff(trade);
     if (*relax) return run_relax(rel);
+    if (*compare) return run_compare(cmp);
     if (*bench_cmd) return run_bench(bench);
     if (*material) return run_material(mat);
     if (*fit_cmd) return run_fit(fit);

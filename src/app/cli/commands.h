@@ -37,8 +37,11 @@ struct SimulateOptions {
   // --accuracy E: the cheapest setting the measured trade says keeps the max position
   // error within E of the cloth's size; from --trade FILE.csv, else the committed
   // assets/tradeoff/<scene stem>.csv, else measured first (tradeoff_command.cpp).
+  // With --size N the committed trade is assets/tradeoff/<stem>.<N>.csv. It picks
+  // against max(E, the trade's floor) in --metric (default: the trade's default).
   std::optional<double> accuracy;
   std::optional<std::string> trade;
+  std::optional<std::string> metric;
   double progress = 2;  // wall seconds between progress lines on stderr; 0: none
   // --record FILE: every node at every frame time k / fps, in the file's node
   // order (docs/learning.md, "Reference motion"); --export-pc2 FILE.pc2: the
@@ -84,6 +87,15 @@ struct TradeoffOptions {
   // --workers N: method lines measured at once (1: one after another); default
   // one per core (TradeoffPlan::workers).
   std::optional<int> workers;
+  // --ensemble K: references of the scene's own spread (default 8, in [2, 64]);
+  // --perturbation: each one's shift ("1mm", "1e-6", "0.5um"; default 1 mm);
+  // --metric: what the summary's budgets, front and chart use.
+  int ensemble = 8;
+  std::string perturbation = "1mm";
+  std::string metric;  // empty: kDefaultMetric
+  // --replot FILE.csv: no measuring; the chart and summary of a trade already
+  // measured (of this scene), in --metric.
+  std::optional<std::string> replot;
 };
 int run_tradeoff(const TradeoffOptions& options);
 struct Scene;
@@ -91,6 +103,11 @@ struct Scene;
 // (resized_grid), as the window's --size runs it; without N, the scene as
 // read. A size out of range or a scene with no grid is an InputError.
 Scene sized_scene(Scene scene, const std::string& scene_path, const std::optional<int>& size);
+// A length as "1mm", "0.5um", "2nm", "1cm" or "1e-6" (m); nullopt when it is none.
+std::optional<double> parse_length(const std::string& text);
+// --metric's value (empty: kDefaultMetric); an unknown name is an InputError naming `option`.
+enum class Metric : int;
+Metric metric_option(const std::string& text, const char* option);
 // The parts `simulate --accuracy` shares when it has to measure a trade itself:
 // the checked plan (InputError naming the option) and the measurement, which
 // prints its progress on stdout.
@@ -99,6 +116,15 @@ struct TradeTable;
 TradeoffPlan tradeoff_plan(const TradeoffOptions& options);
 TradeTable measure_trade(const Scene& scene, const std::string& scene_file,
                          const TradeoffPlan& plan);
+
+// `compare A.json B.json [--scene S] [--size N]`: every metric between two
+// results of one cloth, as JSON on stdout (compare_command.cpp).
+struct CompareOptions {
+  std::string a, b;
+  std::optional<std::string> scene;  // default: the results' own "scene"
+  std::optional<int> size;           // default: from their node count
+};
+int run_compare(const CompareOptions& options);
 
 struct RelaxOptions {
   std::string scene;

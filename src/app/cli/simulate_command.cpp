@@ -25,21 +25,25 @@ struct AccuracyPick {
   TradeRow row;
   int iterations = 0;  // projective: the iterations per step it runs at (the row's or the scene's)
   double linear_tolerance = 0;  // implicit_euler: its CG tolerance (the row's or the scene's)
+  AccuracyChoice choice;
 };
 
 // The trade to pick from: --trade, else the committed one, else measured now.
 TradeTable find_trade(const SimulateOptions& o, const Scene& scene, std::string& source) {
   if (o.trade) {
     source = *o.trade;
-    return read_trade_csv(*o.trade);
+    return o.size ? read_sized_trade(*o.trade, *o.size) : read_trade_csv(*o.trade);
   }
-  const std::string committed = committed_trade_path(o.scene);
+  // A trade holds at the resolution it was measured at: a resized cloth's is its own.
+  const std::string committed =
+      o.size ? sized_trade_path(o.scene, *o.size) : committed_trade_path(o.scene);
   if (std::filesystem::exists(committed)) {
     source = committed;
-    return read_trade_csv(committed);
+    return o.size ? read_sized_trade(committed, *o.size) : read_trade_csv(committed);
   }
   TradeoffOptions options;
   options.scene = o.scene;
+  options.size = o.size;
   if (o.seconds > 0) options.seconds = o.seconds;
   const TradeoffPlan plan = tradeoff_plan(options);
   std::printf(
@@ -61,8 +65,11 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
   if (trade.scene != scene.name)
     throw InputError(pick.trade, "# scene",
                      "measured for scene '" + trade.scene + "', not for '" + scene.name + "'");
-  const AccuracyChoice c =
-      choose_for_accuracy(trade, pick.trade, pick.requested, scene.solver, "--accuracy");
+  std::optional<Metric> metric;
+  if (o.metric) metric = metric_option(*o.metric, "--metric");
+  const AccuracyChoice c = choose_for_accuracy(trade, pick.trade, pick.requested, scene.solver,
+                                               "--accuracy", metric, "--metric");
+  pick.choice = c;
   scene.solver = c.settings;
   // The trade is measured in double (tradeoff_sweep.cpp): its pick runs so.
   const bool was_float = scene.solver.precision != SpringPrecision::float64;
@@ -72,11 +79,20 @@ AccuracyPick pick_for_accuracy(const SimulateOptions& o, Scene& scene) {
   if (c.settings.integrator == IntegratorKind::implicit_euler)
     pick.linear_tolerance = c.settings.linear_tolerance;
   pick.trade_seconds = trade.seconds;
-  std::printf(
-      "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s "
-      "per simulated s)\n",
-      pick.requested, describe_setting(c.row).c_str(), pick.trade.c_str(), trade.seconds,
-      c.row.position_error_max, c.row.position_error_rms, c.row.wall_per_simulated_second);
+  if (!c.floor_note.empty()) std::printf("%s\n", c.floor_note.c_str());
+  if (std::isfinite(c.floor))
+    std::printf(
+        "accuracy %g (%s): picked %s from %s (measured over %g s: %s %.3g to the ensemble, "
+        "%s the scene's spread %.3g; %.3g s per simulated s)\n",
+        pick.requested, to_string(c.metric), describe_setting(c.row).c_str(), pick.trade.c_str(),
+        trade.seconds, to_string(c.metric), c.error, c.within_floor() ? "within" : "outside",
+        c.floor, c.row.wall_per_simulated_second);
+  else
+    std::printf(
+        "accuracy %g: picked %s from %s (measured over %g s: max error %.3g, RMS %.3g, %.3g s "
+        "per simulated s)\n",
+        pick.requested, describe_setting(c.row).c_str(), pick.trade.c_str(), trade.seconds,
+        c.row.position_error_max, c.row.position_error_rms, c.row.wall_per_simulated_second);
   if (was_float)
     std::printf(
         "  note: the scene's solver.precision is float; the pick runs in double, as it "
@@ -98,6 +114,14 @@ nlohmann::json accuracy_json(const AccuracyPick& p) {
                       {"measured_position_error_max", p.row.position_error_max},
                       {"measured_position_error_rms", p.row.position_error_rms},
                       {"measured_wall_per_simulated_second", p.row.wall_per_simulated_second}};
+  const AccuracyChoice& c = p.choice;
+  j["metric"] = to_string(c.metric);
+  j["measured_error"] = c.error;
+  if (std::isfinite(c.floor)) {
+    j["floor"] = c.floor;
+    j["picked_against"] = c.target;
+    j["within_floor"] = c.within_floor();
+  }
   if (p.iterations > 0) j["iterations"] = p.iterations;
   if (p.linear_tolerance > 0) j["linear_tolerance"] = p.linear_tolerance;
   return j;

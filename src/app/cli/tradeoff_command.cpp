@@ -4,6 +4,7 @@
 // the old files as they were; each is then written whole or not at all.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -58,6 +59,35 @@ std::optional<double> parse_step(const std::string& text) {
 
 }  // namespace
 
+std::optional<double> parse_length(const std::string& text) {
+  static const std::pair<const char*, double> kUnits[] = {
+      {"nm", 1e-9}, {"um", 1e-6}, {"mm", 1e-3}, {"cm", 1e-2}, {"m", 1}};
+  std::string number = text;
+  double unit = 1;
+  for (const auto& [suffix, scale] : kUnits) {
+    const std::size_t n = std::char_traits<char>::length(suffix);
+    if (text.size() > n && text.compare(text.size() - n, n, suffix) == 0) {
+      number = text.substr(0, text.size() - n);
+      unit = scale;
+      break;
+    }
+  }
+  char* end = nullptr;
+  const double v = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(v))
+    return std::nullopt;
+  return v * unit;
+}
+
+Metric metric_option(const std::string& text, const char* option) {
+  if (text.empty()) return kDefaultMetric;
+  const std::optional<Metric> m = parse_metric(text);
+  if (!m)
+    throw InputError("command line", option,
+                     "unknown metric '" + text + "' (expected one of: " + metric_names() + ")");
+  return *m;
+}
+
 TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
   // A trade runs the scene dozens of times over: an hour of simulated time
   // each is already days of wall time for a fine cloth.
@@ -90,7 +120,19 @@ TradeoffPlan tradeoff_plan(const TradeoffOptions& o) {
     throw InputError("command line", "--workers",
                      "must be in [1, " + std::to_string(kMaxTradeoffWorkers) + "], got " +
                          std::to_string(*o.workers) + " (method lines measured at once)");
+  metric_option(o.metric, "--metric");
   TradeoffPlan plan;
+  plan.ensemble.members = o.ensemble;
+  const std::optional<double> shift = parse_length(o.perturbation);
+  if (!shift)
+    throw InputError("command line", "--perturbation",
+                     "not a length: '" + o.perturbation + "' (e.g. 1mm, 0.5um, 1e-6)");
+  plan.ensemble.shift = *shift;
+  if (o.ensemble < kMinEnsemble || o.ensemble > kMaxEnsemble)
+    throw InputError("command line", "--ensemble",
+                     ensemble_refusal(plan.ensemble) + " (references of the scene's own spread)");
+  if (const std::string why = ensemble_refusal(plan.ensemble); !why.empty())
+    throw InputError("command line", "--perturbation", why);
   plan.workers = o.workers.value_or(0);
   for (const std::string& text : o.steps) {
     const std::optional<double> dt = parse_step(text);
@@ -136,8 +178,46 @@ Scene sized_scene(Scene scene, const std::string& scene_path, const std::optiona
   }
 }
 
+namespace {
+
+// The chart (PNG bytes) and the summary of a trade, made in memory: a failure
+// to draw leaves every file as it was.
+struct Report {
+  std::string png, md;
+};
+Report chart_and_summary(const TradeTable& trade, Metric metric, const std::string& png) {
+  std::ostringstream chart;
+  write_trade_chart(trade, metric, chart, png);
+  release_chart_caches();  // the one chart of this process is drawn
+  return {chart.str(), trade_summary(trade, metric, png.substr(png.find_last_of('/') + 1))};
+}
+
+int replot(const TradeoffOptions& o, Metric metric) {
+  const Scene scene = sized_scene(load_scene(o.scene), o.scene, o.size);
+  const TradeTable trade =
+      o.size ? read_sized_trade(*o.replot, *o.size) : read_trade_csv(*o.replot);
+  if (trade.scene != scene.name)
+    throw InputError(*o.replot, "# scene",
+                     "measured for scene '" + trade.scene + "', not for '" + scene.name + "'");
+  if (!has_metric(trade, metric))
+    throw InputError(*o.replot, "--metric",
+                     std::string("this trade did not measure ") + to_string(metric));
+  if (o.out.empty()) throw InputError("command line", "--out", "must name a file");
+  check_writable(o.out);
+  const Report report = chart_and_summary(trade, metric, o.out + ".png");
+  write_file_atomically(o.out + ".png", report.png);
+  write_file_atomically(o.out + ".md", report.md);
+  std::printf("wrote %s.png and %s.md from %s in %s\n", o.out.c_str(), o.out.c_str(),
+              o.replot->c_str(), to_string(metric));
+  return kExitOk;
+}
+
+}  // namespace
+
 int run_tradeoff(const TradeoffOptions& o) {
   const TradeoffPlan plan = tradeoff_plan(o);
+  const Metric metric = metric_option(o.metric, "--metric");
+  if (o.replot) return replot(o, metric);
   Scene scene = sized_scene(load_scene(o.scene), o.scene, o.size);
   if (o.out.empty()) throw InputError("command line", "--out", "must name a file");
   check_writable(o.out);
@@ -150,28 +230,35 @@ int run_tradeoff(const TradeoffOptions& o) {
   const TradeTable trade = measure_trade(scene, o.scene, plan);
 
   const std::string csv = o.out + ".csv", png = o.out + ".png", md = o.out + ".md";
-  const std::string chart_name = png.substr(png.find_last_of('/') + 1);
-  std::ostringstream chart;
-  write_trade_chart(trade, chart, png);
-  release_chart_caches();  // the one chart of this process is drawn
+  const Report report = chart_and_summary(trade, metric, png);
   write_file_atomically(csv, trade_csv(trade));
-  write_file_atomically(png, chart.str());
-  write_file_atomically(md, trade_summary(trade, chart_name));
+  write_file_atomically(png, report.png);
+  write_file_atomically(md, report.md);
 
   const ReferenceReport& r = trade.reference;
   std::printf("reference: rk4 dt = %.4g s, last halving changed %.3g of the size (target %g %s)\n",
               r.dt, r.change, r.target, r.met ? "met" : "NOT met");
+  const double floor = trade.floor ? trade.floor->p90[slot(metric)] : std::nan("");
+  if (std::isfinite(floor))
+    std::printf(
+        "the scene's own spread in %s (%d references shifted %g mm): %.3g%% "
+        "(median %.3g%%)\n",
+        to_string(metric), trade.floor->members, 1000 * trade.floor->shift, 100 * floor,
+        100 * trade.floor->median[slot(metric)]);
   for (double budget : kErrorBudgets) {
-    const auto pick = cheapest_meeting(trade.rows, budget);
-    if (budget < reference_resolution(trade))
-      std::printf("  %-6s not certified (below the reference's resolution)\n",
-                  percent(budget).c_str());
+    const double target = std::isfinite(floor) ? std::max(budget, floor) : budget;
+    const auto pick = cheapest_meeting(trade.rows, target, metric);
+    const std::string asked =
+        percent(budget) + (target > budget ? " (the floor, " + percent(target) + ")" : "");
+    if (metric == Metric::node_max && !trade.floor && budget < reference_resolution(trade))
+      std::printf("  %-6s not certified (below the reference's resolution)\n", asked.c_str());
     else if (pick)
-      std::printf("  %-6s %s: %.3g s per simulated s\n", percent(budget).c_str(),
-                  describe_setting(trade.rows[*pick]).c_str(),
+      std::printf("  %-6s %s: %s %.3g, %.3g s per simulated s\n", asked.c_str(),
+                  describe_setting(trade.rows[*pick]).c_str(), to_string(metric),
+                  row_error(trade.rows[*pick], metric),
                   trade.rows[*pick].wall_per_simulated_second);
     else
-      std::printf("  %-6s no measured setting meets it\n", percent(budget).c_str());
+      std::printf("  %-6s no measured setting meets it\n", asked.c_str());
   }
   std::printf("measured in %.1f s; wrote %s, %s, %s\n", trade.wall_seconds, csv.c_str(),
               png.c_str(), md.c_str());

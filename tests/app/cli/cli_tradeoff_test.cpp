@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "support/cli_fixture.h"
+#include "support/hand_made_trade.h"
 #include "tradeoff/trade_csv.h"
 
 namespace neurocloth::cli_test {
@@ -34,17 +35,7 @@ TradeRow row(const std::string& method, double dt, double cost, double error) {
 // A hand-made trade for `scene`: verlet at 2 ms is the cheapest within 1%, the
 // adaptive propagation the cheapest within 20%, rk4 the most accurate (1e-5).
 std::string hand_made_trade(const std::string& scene = "hanging") {
-  TradeTable t;
-  t.scene = scene;
-  t.scene_file = "assets/scenes/hanging.json";
-  t.seconds = 0.5;
-  t.samples = 4;
-  t.cloth_size = 1.34;
-  t.energy_scale = 52;
-  t.reference.dt = 1e-4;
-  t.reference.change = 1e-10;
-  t.reference.met = true;
-  t.reference.stopped_by = "target";
+  TradeTable t = test::hanging_trade(scene);
   t.rows = {row("network", 0.002, 0.02, 0.05), row(kAdaptiveMethod, 0.004, 0.01, 0.15),
             row("verlet", 0.002, 0.04, 0.008), row("rk4", 0.002, 0.1, 1e-5)};
   return trade_csv(t);

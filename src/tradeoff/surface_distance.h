@@ -1,0 +1,31 @@
+#pragma once
+// How far apart two cloths' surfaces are: from every node of one to the nearest
+// point of the other's triangles, both ways. Unlike the distance between the
+// same node in two runs, it does not see a fold that slid along itself, only a
+// surface that is somewhere else (docs/tradeoff.md, "Errors people see").
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/base/vec3.h"
+
+namespace neurocloth {
+
+using Triangles = std::vector<std::array<std::int32_t, 3>>;
+
+// The nearest point of triangle (a, b, c) to p: its distance.
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+struct SurfaceDistance {
+  double mean = 0;  // m: over the nodes of both cloths
+  double max = 0;   // m
+};
+
+// `a` and `b` are x0 y0 z0 x1 ... of `nodes` nodes; `triangles` index both.
+// Without triangles (a chain of nodes) the surface is its nodes. Non-finite
+// coordinates give NaN (nothing to measure).
+SurfaceDistance surface_distance(const double* a, const double* b, std::size_t nodes,
+                                 const Triangles& triangles);
+
+}  // namespace neurocloth
