@@ -63,10 +63,6 @@ std::optional<DrapeSupport> drape_support(const Scene& scene) {
 
 namespace {
 
-Vec3 at(const double* x, std::size_t i) {
-  return Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-}
-
 constexpr int kCellsPerSize = 1024;  // the raster's cell: the cloth's size / this
 constexpr int kMaxCellsASide = 4096;
 constexpr double kMaxCellVisits = 2e8;
@@ -138,7 +134,7 @@ DrapeMeter::Shadow DrapeMeter::shadow(const double* x) const {
   std::vector<double> pu(nodes_), pw(nodes_);
   double lo_u = std::numeric_limits<double>::infinity(), hi_u = -lo_u, lo_w = lo_u, hi_w = -lo_u;
   for (std::size_t i = 0; i < nodes_; ++i) {
-    const Vec3 p = at(x, i);
+    const Vec3 p = node_at(x, i);
     pu[i] = p.dot(u_);
     pw[i] = p.dot(w_);
     lo_u = std::min(lo_u, pu[i]);

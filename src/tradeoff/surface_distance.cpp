@@ -50,10 +50,6 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
 
 namespace {
 
-Vec3 at(const double* x, std::size_t i) {
-  return Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-}
-
 // The triangles of one cloth binned in a uniform grid of cells, for the
 // nearest triangle to a point: a search box that doubles until the nearest
 // triangle found lies within it (then no triangle outside can be nearer).
@@ -61,16 +57,16 @@ class TriangleGrid {
  public:
   TriangleGrid(const double* x, std::size_t nodes, const Triangles& triangles)
       : x_(x), triangles_(triangles), stamp_(triangles.size(), 0) {
-    lo_ = hi_ = at(x, 0);
+    lo_ = hi_ = node_at(x, 0);
     for (std::size_t i = 1; i < nodes; ++i) {
-      lo_ = lo_.cwiseMin(at(x, i));
-      hi_ = hi_.cwiseMax(at(x, i));
+      lo_ = lo_.cwiseMin(node_at(x, i));
+      hi_ = hi_.cwiseMax(node_at(x, i));
     }
     // About two triangles a cell on a sheet: the cell as wide as a mean
     // triangle's box, and never more than 8 cells a triangle in all.
     double extent_sum = 0;
     for (const auto& t : triangles_) {
-      const Vec3 a = at(x, t[0]), b = at(x, t[1]), c = at(x, t[2]);
+      const Vec3 a = node_at(x, t[0]), b = node_at(x, t[1]), c = node_at(x, t[2]);
       extent_sum += (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).maxCoeff();
     }
     const Vec3 extent = hi_ - lo_;
@@ -99,7 +95,7 @@ class TriangleGrid {
     std::vector<std::uint32_t> counts(cells() + 1, 0);
     auto each_cell = [&](std::size_t t, auto&& f) {
       const auto& tri = triangles_[t];
-      const Vec3 a = at(x_, tri[0]), b = at(x_, tri[1]), c = at(x_, tri[2]);
+      const Vec3 a = node_at(x_, tri[0]), b = node_at(x_, tri[1]), c = node_at(x_, tri[2]);
       int i0[3], i1[3];
       long span = 1;
       for (int d = 0; d < 3; ++d) {
@@ -131,8 +127,8 @@ class TriangleGrid {
       if (stamp_[t] == query_) return;
       stamp_[t] = query_;
       const auto& tri = triangles_[t];
-      best = std::min(best,
-                      point_triangle_distance(p, at(x_, tri[0]), at(x_, tri[1]), at(x_, tri[2])));
+      best = std::min(best, point_triangle_distance(p, node_at(x_, tri[0]), node_at(x_, tri[1]),
+                                                    node_at(x_, tri[2])));
     };
     for (std::size_t t : big_)
       test(static_cast<std::uint32_t>(t));
@@ -193,7 +189,7 @@ void one_way(const double* from, const double* to, std::size_t nodes, const Tria
              double& sum, double& max) {
   TriangleGrid grid(to, nodes, triangles);
   for (std::size_t i = 0; i < nodes; ++i) {
-    const double d = grid.nearest(at(from, i));
+    const double d = grid.nearest(node_at(from, i));
     sum += d;
     max = std::max(max, d);
   }

@@ -14,6 +14,11 @@ namespace neurocloth {
 
 using Triangles = std::vector<std::array<std::int32_t, 3>>;
 
+// Node i of positions laid out x0 y0 z0 x1 ...
+inline Vec3 node_at(const double* x, std::size_t i) {
+  return Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+}
+
 // The nearest point of triangle (a, b, c) to p: its distance.
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
