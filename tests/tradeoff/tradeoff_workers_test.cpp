@@ -34,6 +34,7 @@ TradeoffPlan tiny_plan(int workers) {
   plan.reference.budget_seconds = 1e6;
   plan.method_budget_seconds = 1e6;
   plan.workers = workers;
+  plan.ensemble.members = 3;  // run on the workers too, and read by every line
   return plan;
 }
 
@@ -125,12 +126,17 @@ TEST(TradeoffWorkers, TwoWorkersMeasureWhatOneDoesInTheSameOrder) {
     EXPECT_TRUE(same(a[i].position_error_max, b[i].position_error_max));
     EXPECT_TRUE(same(a[i].position_error_rms, b[i].position_error_rms));
     EXPECT_TRUE(same(a[i].energy_error, b[i].energy_error));
+    for (Metric m : kAllMetrics)
+      EXPECT_TRUE(same(a[i].ensemble[slot(m)], b[i].ensemble[slot(m)])) << to_string(m);
     EXPECT_GT(b[i].wall_per_simulated_second, 0);
   }
   EXPECT_EQ(one.table.sweep_stops, two.table.sweep_stops);
   EXPECT_FALSE(two.table.sweep_stops.empty());
   EXPECT_EQ(one.table.reference.dt, two.table.reference.dt);
   EXPECT_EQ(one.table.reference.change, two.table.reference.change);
+  ASSERT_TRUE(one.table.floor && two.table.floor);
+  for (Metric m : kAllMetrics)
+    EXPECT_TRUE(same(one.table.floor->p90[slot(m)], two.table.floor->p90[slot(m)])) << to_string(m);
   EXPECT_TRUE(one.all_on_caller);
   EXPECT_TRUE(two.all_on_caller);
   EXPECT_EQ(without_costs(one.log), without_costs(two.log));
