@@ -406,9 +406,12 @@ TradeTable measure_tradeoff(const Scene& scene_as_given, const std::string& scen
   const ConvergedReference ref = converge_reference(
       scene, times, scale, first_step(scene, IntegratorKind::rk4, interval), plan.reference, log);
   table.reference = ref.report;
-  const MetricContext metrics = metric_context(scene);
+  // The metrics' context (triangles, support, the flat cloth's shadow) only
+  // serves the ensemble: without one no row is measured in them.
+  MetricContext metrics;
   std::optional<Ensemble> ensemble;
   if (plan.ensemble.members != 0) {
+    metrics = metric_context(scene);
     const SolverSettings member = member_settings(ref, scale, times.size());
     ensemble = run_ensemble(
         scene, times, member, plan.ensemble, metrics,
