@@ -58,6 +58,7 @@ const TradeRow* measured_row(const SizedTrade& trade, int iterations, double dt)
 // those win then, leaving the window's renderer the most of the machine
 // (llvmpipe draws on the same cores).
 int least_measured_error(const SizedTrade& trade, int most, double dt) {
+  if (!trade.table) return most;
   const Metric metric = default_metric(*trade.table);
   const TradeRow* least = nullptr;
   for (int it = 1; it <= most; ++it)
