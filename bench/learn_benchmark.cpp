@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "learn/fit_problem.h"
-#include "learn/global_search.h"
-#include "learn/input_starts.h"
-#include "learn/optimizer.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/input_starts.h"
+#include "learn/optim/global_search.h"
+#include "learn/optim/optimizer.h"
 
 namespace neurocloth {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "core/fuzzy/formats/fcl_reader.h"
 #include "core/fuzzy/inference.h"
-#include "learn/rule_tuning.h"
+#include "learn/rules/rule_tuning.h"
 
 namespace neurocloth {
 namespace {

@@ -8,30 +8,21 @@
 #include <stdexcept>
 
 #include "render/background_cache.h"
-#include "render/cloth_shading.h"
+#include "render/cloth_layer.h"
 #include "render/collider_meshes.h"
 #include "render/gl_buffer.h"
 #include "render/gl_program.h"
 #include "render/grid_layer.h"
 #include "render/legend_text.h"
+#include "render/line_layer.h"
 #include "render/render_palette.h"
+#include "render/surface_program.h"
 
 namespace neurocloth {
 namespace {
 
-constexpr int kOverlayFloats = 7;  // x, y, z, r, g, b, a
 // Plane colliders reach this many grid sizes: to the horizon of any framed view.
 constexpr double kPlaneReach = 25;
-
-// Maps pixels (origin top left, y down) to clip space, for the 2D legend.
-Eigen::Matrix4f pixel_projection(int width, int height) {
-  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
-  m(0, 0) = 2.0f / float(width);
-  m(0, 3) = -1;
-  m(1, 1) = -2.0f / float(height);
-  m(1, 3) = 1;
-  return m;
-}
 
 void check_gl(const char* where) {
   const GLenum e = glGetError();
@@ -55,84 +46,33 @@ std::string percent_label(double fraction) {
 // the scene's fixed parts (triangles, springs, colliders, grid) are uploaded
 // again only when a snapshot arrives with a different SceneGeometry.
 struct Renderer::Impl {
-  GlProgram surface, lines, legend;
-  struct {
-    GLint view_projection, front, back, use_strain, strain_max, eye, key;
-  } su;
-  struct {
-    GLint view_projection, point_size, round_points;
-  } lu;
+  SurfaceProgram surface;  // the cloth's and the colliders'
+  ClothLayer cloth;
+  LineLayer lines;
+  GlProgram legend;
   GLint legend_viewport;
 
-  enum Vao {
-    cloth_vao,
-    coarse_vao,
-    wire_vao,
-    springs_vao,
-    nodes_vao,
-    collider_vao,
-    overlay_vao,
-    ghost_vao,
-    legend_vao,
-    kVaoCount
-  };
+  enum Vao { collider_vao, legend_vao, kVaoCount };
   GLuint vao[kVaoCount] = {};
-  GlBuffer position, normal, strain, triangles, coarse_triangles, spring_pairs, node_colour;
-  GlBuffer collider_position, collider_normal, collider_index, overlay, legend_quad, ghost;
+  GlBuffer collider_position, collider_normal, collider_index, legend_quad;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
-  std::size_t triangle_indices = 0, coarse_indices = 0;
-  std::size_t spring_begin[kSpringFamilyCount + 1] = {};  // index ranges by family
   std::size_t collider_indices = 0;
   bool geometry_uploaded = false;
   GridLayer grid;
   BackgroundCache background;
 
-  // Per-frame scratch, kept for its storage.
-  ClothShading shading;
-  std::vector<float> colours, overlay_data;
-
   explicit Impl(const std::string& dir)
-      : surface(dir, "surface.vert", "surface.frag", {"strain_colour.glsl"}),
-        lines(dir, "lines.vert", "lines.frag"),
+      : surface(dir),
+        lines(dir, cloth),
         legend(dir, "legend.vert", "legend.frag", {"strain_colour.glsl"}),
         grid(dir) {
-    su = {surface.uniform("u_view_projection"), surface.uniform("u_front_colour"),
-          surface.uniform("u_back_colour"),     surface.uniform("u_use_strain"),
-          surface.uniform("u_strain_max"),      surface.uniform("u_eye"),
-          surface.uniform("u_key_direction")};
-    lu = {lines.uniform("u_view_projection"), lines.uniform("u_point_size"),
-          lines.uniform("u_round_points")};
     legend_viewport = legend.uniform("u_viewport");
     glGenVertexArrays(kVaoCount, vao);
-    // Attribute layouts are fixed once: buffers keep their names when they
-    // grow, so the vertex arrays stay valid.
-    for (const auto& [surface_vao, index] :
-         {std::pair{cloth_vao, &triangles}, std::pair{coarse_vao, &coarse_triangles}}) {
-      glBindVertexArray(vao[surface_vao]);  // the cloth's surface, whole or coarse
-      vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-      vertex_attribute(vertex_slot::normal, normal, 3, 3, 0);
-      vertex_attribute(vertex_slot::scalar, strain, 1, 1, 0);
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index->id());
-    }
-    glBindVertexArray(vao[wire_vao]);
-    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangles.id());
-    glBindVertexArray(vao[springs_vao]);
-    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, spring_pairs.id());
-    glBindVertexArray(vao[nodes_vao]);
-    vertex_attribute(vertex_slot::position, position, 3, 3, 0);
-    vertex_attribute(vertex_slot::colour, node_colour, 4, 4, 0);
     glBindVertexArray(vao[collider_vao]);
     vertex_attribute(vertex_slot::position, collider_position, 3, 3, 0);
     vertex_attribute(vertex_slot::normal, collider_normal, 3, 3, 0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, collider_index.id());
-    glBindVertexArray(vao[overlay_vao]);
-    vertex_attribute(vertex_slot::position, overlay, 3, kOverlayFloats, 0);
-    vertex_attribute(vertex_slot::colour, overlay, 4, kOverlayFloats, 3);
-    glBindVertexArray(vao[ghost_vao]);
-    vertex_attribute(vertex_slot::position, ghost, 3, 3, 0);
     glBindVertexArray(vao[legend_vao]);
     vertex_attribute(vertex_slot::position, legend_quad, 2, 3, 0);
     vertex_attribute(vertex_slot::scalar, legend_quad, 1, 3, 2);
@@ -144,61 +84,32 @@ struct Renderer::Impl {
   ~Impl() { glDeleteVertexArrays(kVaoCount, vao); }
 
   long allocations() const {
-    long n = 0;
-    for (const GlBuffer* b :
-         {&position, &normal, &strain, &triangles, &coarse_triangles, &spring_pairs, &node_colour,
-          &collider_position, &collider_normal, &collider_index, &overlay, &legend_quad, &ghost})
+    long n = cloth.allocations() + lines.allocations();
+    for (const GlBuffer* b : {&collider_position, &collider_normal, &collider_index, &legend_quad})
       n += b->allocations();
     return n + grid.allocations();
   }
 
   void upload_geometry(const FrameSnapshot& s);
   void upload_frame(const FrameSnapshot& s, const RenderOptions& o);
-  void use_surface(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
   // The still part of a frame: the clear, the colliders, the ground grid.
   void draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
                        const RenderOptions& o);
-  void draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f& vp, const RenderOptions& o);
-  void draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s, const RenderOptions& o,
-                  int height);
   void draw_legend(const RenderOptions& o, int width, int height);
-  void draw_ghosts(const Eigen::Matrix4f& vp, const std::vector<float>& points, int height);
 };
 
 void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
+  // Not uploaded until every check below has passed: a refused scene drawn
+  // again is checked again, never drawn from what its refusal left.
+  geometry_uploaded = false;
   geometry = s.geometry;
-  triangle_indices = coarse_indices = 0;
-  std::fill(std::begin(spring_begin), std::end(spring_begin), 0);
-  const std::size_t n = geometry ? geometry->node_count : s.position.size() / 3;
-  auto check = [&](std::int32_t i, const char* what) {
-    if (i < 0 || std::size_t(i) >= n)
-      throw std::invalid_argument(std::string("Renderer: a ") + what + " refers to node " +
-                                  std::to_string(i) + " of " + std::to_string(n));
-  };
+  // Both layers let go of the scene before either checks the new one, so that
+  // a scene refused halfway leaves nothing of the one before to draw.
+  cloth.forget_geometry();
+  lines.forget_geometry();
   if (geometry) {
-    for (const auto* list : {&geometry->triangles, &geometry->coarse_triangles})
-      for (const auto& t : *list)
-        for (const std::int32_t i : t)
-          check(i, "triangle");
-    triangles.upload(geometry->triangles);
-    triangle_indices = 3 * geometry->triangles.size();
-    coarse_triangles.upload(geometry->coarse_triangles);
-    coarse_indices = 3 * geometry->coarse_triangles.size();
-    // Springs grouped by family, so each family is one draw in its own colour.
-    std::vector<std::uint32_t> pairs;
-    pairs.reserve(2 * geometry->spring_a.size());
-    for (int f = 0; f < kSpringFamilyCount; ++f) {
-      spring_begin[f] = pairs.size();
-      for (std::size_t k = 0; k < geometry->spring_a.size(); ++k)
-        if (int(geometry->spring_family[k]) == f) {
-          check(geometry->spring_a[k], "spring");
-          check(geometry->spring_b[k], "spring");
-          pairs.push_back(std::uint32_t(geometry->spring_a[k]));
-          pairs.push_back(std::uint32_t(geometry->spring_b[k]));
-        }
-    }
-    spring_begin[kSpringFamilyCount] = pairs.size();
-    spring_pairs.upload(pairs);
+    cloth.upload_geometry(*geometry);
+    lines.upload_geometry(*geometry);
   }
   grid.place(s);
   const GroundGrid& ground = grid.ground();
@@ -212,39 +123,12 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
 }
 
 void Renderer::Impl::upload_frame(const FrameSnapshot& s, const RenderOptions& o) {
-  const std::size_t n = s.position.size() / 3;
   if (geometry && (s.position.size() != 3 * geometry->node_count))
     throw std::invalid_argument("Renderer: the snapshot has " + std::to_string(s.position.size()) +
                                 " coordinates for " + std::to_string(geometry->node_count) +
                                 " nodes");
-  shading.update(s, o.strain);
-  position.upload(s.position);
-  normal.upload(shading.normal);
-  if (o.strain) strain.upload(shading.strain);
-  if (o.nodes) {
-    colours.resize(4 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const bool pinned = i < s.pinned.size() && s.pinned[i];
-      const palette::Colour& c = pinned ? palette::kNodePinned : palette::kNodeFree;
-      std::copy(c.begin(), c.end(), colours.begin() + 4 * i);
-      colours[4 * i + 3] = 1;
-    }
-    node_colour.upload(colours);
-  }
-}
-
-void Renderer::Impl::use_surface(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
-                                 const RenderOptions& o) {
-  surface.use();
-  glUniformMatrix4fv(su.view_projection, 1, GL_FALSE, vp.data());
-  const Vec3 eye = camera.eye();
-  glUniform3f(su.eye, float(eye.x()), float(eye.y()), float(eye.z()));
-  // The key light comes from above and to the left of the viewer, so whatever
-  // the camera looks at is lit from the front.
-  const Vec3 key =
-      (-0.4 * camera.right() + 0.8 * camera.up() - 0.45 * camera.forward()).normalized();
-  glUniform3f(su.key, float(key.x()), float(key.y()), float(key.z()));
-  glUniform1f(su.strain_max, std::max(o.strain_max, 1e-6f));
+  cloth.upload_frame(s, o.strain);
+  lines.upload_frame(s, o.nodes);
 }
 
 void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
@@ -254,10 +138,7 @@ void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Mat
   glClearDepth(1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (o.colliders && collider_indices > 0) {
-    use_surface(camera, vp, o);
-    set_colour(su.front, palette::kCollider);
-    set_colour(su.back, palette::kCollider);
-    glUniform1i(su.use_strain, 0);
+    surface.use(camera, vp, o.strain_max, palette::kCollider, palette::kCollider, false);
     glBindVertexArray(vao[collider_vao]);
     glVertexAttrib1f(vertex_slot::scalar, 0);
     // Pushed back a little so the grid lying on a floor plane is drawn over it.
@@ -269,117 +150,6 @@ void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Mat
   // Blended over the colliders and the clear without writing depth, so it hides
   // nothing drawn later; the cloth, opaque, covers it where it is in front.
   if (o.grid) grid.draw(camera, vp);
-}
-
-void Renderer::Impl::draw_cloth(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
-                                const RenderOptions& o) {
-  if (triangle_indices > 0) {
-    use_surface(camera, vp, o);
-    set_colour(su.front, palette::kClothFront);
-    set_colour(su.back, palette::kClothBack);
-    glUniform1i(su.use_strain, o.strain ? 1 : 0);
-    const bool coarse = o.max_cloth_triangles > 0 && coarse_indices > 0 &&
-                        triangle_indices / 3 > o.max_cloth_triangles;
-    glBindVertexArray(vao[coarse ? coarse_vao : cloth_vao]);
-    // The strain array is only filled when the map is on.
-    if (o.strain)
-      glEnableVertexAttribArray(vertex_slot::scalar);
-    else
-      glDisableVertexAttribArray(vertex_slot::scalar);
-    // Lines drawn on the cloth (wireframe, springs, nodes) must win the depth test.
-    const bool overlaid = o.wireframe || o.springs || o.nodes;
-    if (overlaid) {
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1, 2);
-    } else {
-      glDisable(GL_POLYGON_OFFSET_FILL);
-    }
-    glDrawElements(GL_TRIANGLES, GLsizei(coarse ? coarse_indices : triangle_indices),
-                   GL_UNSIGNED_INT, nullptr);
-  }
-  glDisable(GL_POLYGON_OFFSET_FILL);
-}
-
-void Renderer::Impl::draw_lines(const Eigen::Matrix4f& vp, const FrameSnapshot& s,
-                                const RenderOptions& o, int height) {
-  lines.use();
-  glUniformMatrix4fv(lu.view_projection, 1, GL_FALSE, vp.data());
-  glUniform1i(lu.round_points, 0);
-  glEnable(GL_BLEND);
-  // Colour blends; the framebuffer's alpha stays opaque for the PNG.
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  if (o.wireframe && triangle_indices > 0) {
-    glBindVertexArray(vao[wire_vao]);
-    glVertexAttrib4f(vertex_slot::colour, palette::kWire[0], palette::kWire[1], palette::kWire[2],
-                     0.55f);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDrawElements(GL_TRIANGLES, GLsizei(triangle_indices), GL_UNSIGNED_INT, nullptr);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  }
-  if (o.springs && spring_begin[kSpringFamilyCount] > 0) {
-    glBindVertexArray(vao[springs_vao]);
-    for (int f = 0; f < kSpringFamilyCount; ++f) {
-      const palette::Colour& c = palette::kSpring[f];
-      glVertexAttrib4f(vertex_slot::colour, c[0], c[1], c[2], 0.9f);
-      const std::size_t count = spring_begin[f + 1] - spring_begin[f];
-      if (count > 0)
-        glDrawElements(GL_LINES, GLsizei(count), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(spring_begin[f] * sizeof(std::uint32_t)));
-    }
-  }
-  const float point_size = std::clamp(float(height) / 180.0f, 3.0f, 10.0f);
-  if (o.nodes && !s.position.empty()) {
-    glUniform1f(lu.point_size, point_size);
-    glUniform1i(lu.round_points, 1);
-    glBindVertexArray(vao[nodes_vao]);
-    glDrawArrays(GL_POINTS, 0, GLsizei(s.position.size() / 3));
-    glUniform1i(lu.round_points, 0);
-  }
-  // Applied forces: a line from the node to where it is pulled, drawn over
-  // everything so a drag stays visible behind the cloth.
-  if (o.forces && !s.forces.empty()) {
-    overlay_data.clear();
-    const palette::Colour& c = palette::kForce;
-    for (const FrameSnapshot::AppliedForce& f : s.forces) {
-      if (f.node < 0 || std::size_t(f.node) >= s.position.size() / 3) continue;
-      const Vec3 a = s.node(std::size_t(f.node));
-      overlay_data.insert(overlay_data.end(), {float(a.x()), float(a.y()), float(a.z()), c[0], c[1],
-                                               c[2], 1.0f, float(f.anchor.x()), float(f.anchor.y()),
-                                               float(f.anchor.z()), c[0], c[1], c[2], 1.0f});
-    }
-    if (!overlay_data.empty()) {
-      overlay.upload(overlay_data);
-      glDisable(GL_DEPTH_TEST);
-      glBindVertexArray(vao[overlay_vao]);
-      const GLsizei count = GLsizei(overlay_data.size() / kOverlayFloats);
-      glDrawArrays(GL_LINES, 0, count);
-      glUniform1f(lu.point_size, point_size + 2);
-      glUniform1i(lu.round_points, 1);
-      glDrawArrays(GL_POINTS, 0, count);
-      glUniform1i(lu.round_points, 0);
-      glEnable(GL_DEPTH_TEST);
-    }
-  }
-  glDisable(GL_BLEND);
-}
-
-// The reference's points, over everything (a ghost behind the cloth stays
-// visible), a little smaller than the nodes so both show where they meet.
-void Renderer::Impl::draw_ghosts(const Eigen::Matrix4f& vp, const std::vector<float>& points,
-                                 int height) {
-  if (points.size() < 3) return;
-  ghost.upload(points);
-  lines.use();
-  glUniformMatrix4fv(lu.view_projection, 1, GL_FALSE, vp.data());
-  glUniform1f(lu.point_size, std::clamp(float(height) / 240.0f, 3.0f, 8.0f));
-  glUniform1i(lu.round_points, 1);
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(vao[ghost_vao]);
-  const palette::Colour& c = palette::kGhost;
-  glVertexAttrib4f(vertex_slot::colour, c[0], c[1], c[2], 1.0f);
-  glDrawArrays(GL_POINTS, 0, GLsizei(points.size() / 3));
-  glUniform1i(lu.round_points, 0);
-  glEnable(GL_DEPTH_TEST);
 }
 
 void Renderer::Impl::draw_legend(const RenderOptions& o, int width, int height) {
@@ -403,16 +173,7 @@ void Renderer::Impl::draw_legend(const RenderOptions& o, int width, int height) 
   const std::string top = percent_label(o.strain_max), bottom = percent_label(0);
   append_label(top, x0 - gap - label_width(top, text_h), y0 + text_h, text_h, segments);
   append_label(bottom, x0 - gap - label_width(bottom, text_h), y1, text_h, segments);
-  overlay_data.clear();
-  const palette::Colour& c = palette::kLegendText;
-  for (std::size_t i = 0; i + 1 < segments.size(); i += 2)
-    overlay_data.insert(overlay_data.end(), {segments[i], segments[i + 1], 0, c[0], c[1], c[2], 1});
-  overlay.upload(overlay_data);
-  lines.use();
-  const Eigen::Matrix4f pixels = pixel_projection(width, height);
-  glUniformMatrix4fv(lu.view_projection, 1, GL_FALSE, pixels.data());
-  glBindVertexArray(vao[overlay_vao]);
-  glDrawArrays(GL_LINES, 0, GLsizei(overlay_data.size() / kOverlayFloats));
+  lines.draw_in_pixels(segments, palette::kLegendText, width, height);
   glEnable(GL_DEPTH_TEST);
 }
 
@@ -453,9 +214,9 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
     copied = m.background.holds(key) && m.background.copy_to_window();
   }
   if (!copied) m.draw_background(camera, vp, options);
-  m.draw_cloth(camera, vp, options);
-  m.draw_lines(vp, snapshot, options, height);
-  if (ghost_points) m.draw_ghosts(vp, *ghost_points, height);
+  m.cloth.draw(m.surface, camera, vp, options);
+  m.lines.draw(vp, snapshot, options, height);
+  if (ghost_points) m.lines.draw_ghosts(vp, *ghost_points, height);
   if (options.strain) m.draw_legend(options, width, height);
   glBindVertexArray(0);
   glUseProgram(0);

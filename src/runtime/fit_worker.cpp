@@ -3,7 +3,7 @@
 #include <cmath>
 #include <exception>
 
-#include "learn/input_starts.h"
+#include "learn/fit/input_starts.h"
 
 namespace neurocloth {
 

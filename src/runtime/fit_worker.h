@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "learn/fit_problem.h"
-#include "learn/online_adaptation.h"
-#include "learn/optimizer.h"
-#include "learn/reference_motion.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/online_adaptation.h"
+#include "learn/motion/reference_motion.h"
+#include "learn/optim/optimizer.h"
 #include "runtime/sim_command.h"
 
 namespace neurocloth {

@@ -4,49 +4,9 @@
 #include <cmath>
 #include <limits>
 
-namespace neurocloth {
+#include "core/geometry/nearest_on_triangle.h"
 
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // The Voronoi regions of the triangle's vertices, edges and face in turn
-  // (the closest point is in exactly one); a degenerate triangle falls through
-  // to its edges, which handle it.
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.norm();
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double t = d1 / (d1 - d3);
-    return (p - (a + t * ab)).norm();
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double t = d2 / (d2 - d6);
-    return (p - (a + t * ac)).norm();
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return (p - (b + t * (c - b))).norm();
-  }
-  const double denom = va + vb + vc;
-  if (!(std::abs(denom) > 0)) {  // degenerate: the nearest of its three edges
-    auto segment = [&p](const Vec3& u, const Vec3& v) {
-      const Vec3 e = v - u;
-      const double len2 = e.squaredNorm();
-      const double t = len2 > 0 ? std::clamp((p - u).dot(e) / len2, 0.0, 1.0) : 0.0;
-      return (p - (u + t * e)).norm();
-    };
-    return std::min({segment(a, b), segment(b, c), segment(c, a)});
-  }
-  const double v = vb / denom, w = vc / denom;
-  return (p - (a + v * ab + w * ac)).norm();
-}
+namespace neurocloth {
 
 namespace {
 

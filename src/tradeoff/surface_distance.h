@@ -19,9 +19,6 @@ inline Vec3 node_at(const double* x, std::size_t i) {
   return Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
 }
 
-// The nearest point of triangle (a, b, c) to p: its distance.
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
-
 struct SurfaceDistance {
   double mean = 0;  // m: over the nodes of both cloths
   double max = 0;   // m

@@ -6,7 +6,8 @@
 #include <exception>
 #include <sstream>
 
-#include "learn/reference_pose.h"
+#include "learn/motion/read_reference.h"
+#include "learn/motion/reference_pose.h"
 #include "ui/ui_values.h"
 
 namespace neurocloth {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/scene/frame_snapshot.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 #include "runtime/fit_worker.h"
 #include "ui/panel_context.h"
 

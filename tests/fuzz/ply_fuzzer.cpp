@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "fuzz/fuzz_contract.h"
-#include "learn/ply_points.h"
-#include "learn/reference_motion.h"
-#include "learn/xyz_points.h"
+#include "learn/motion/ply_points.h"
+#include "learn/motion/reference_motion.h"
+#include "learn/motion/xyz_points.h"
 
 namespace neurocloth::fuzz {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "fuzz/fuzz_contract.h"
 #include "fuzz/reference_contract.h"
-#include "learn/point_cache.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/point_cache.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::fuzz {
 namespace {

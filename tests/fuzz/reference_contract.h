@@ -5,7 +5,7 @@
 #include <string>
 
 #include "fuzz/fuzz_contract.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::fuzz {
 

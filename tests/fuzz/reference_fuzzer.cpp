@@ -12,7 +12,8 @@
 
 #include "fuzz/fuzz_contract.h"
 #include "fuzz/reference_contract.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/read_reference.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::fuzz {
 namespace {

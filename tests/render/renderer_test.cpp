@@ -281,6 +281,11 @@ TEST(Renderer, ASnapshotThatDisagreesWithItsGeometryIsRefused) {
   s.geometry = broken;
   s.position.resize(3 * 400);
   EXPECT_THROW(renderer.draw(s, OrbitCamera(), {}, 64, 64), std::invalid_argument);
+  // The same refused scene again (a window redraws its last snapshot): refused
+  // again, not drawn with the index it refused.
+  RenderOptions all;
+  all.strain = all.wireframe = all.springs = all.nodes = true;
+  EXPECT_THROW(renderer.draw(s, OrbitCamera(), all, 64, 64), std::invalid_argument);
 }
 
 TEST(Renderer, AMissingShaderIsNamed) {

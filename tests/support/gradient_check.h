@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/simulation/simulation.h"
-#include "learn/fit_problem.h"
+#include "learn/fit/fit_problem.h"
 #include "support/scene_builder.h"
 
 namespace neurocloth::test {

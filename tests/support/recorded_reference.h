@@ -11,7 +11,7 @@
 #include <random>
 
 #include "core/simulation/simulation.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::test {
 

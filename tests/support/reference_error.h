@@ -6,7 +6,8 @@
 #include <string>
 
 #include "core/io/input_error.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/read_reference.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::test {
 

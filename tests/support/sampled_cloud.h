@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/simulation/simulation.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth::test {
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/geometry/nearest_on_triangle.h"
 #include "support/test_support.h"
 #include "tradeoff/cloth_metrics.h"
 
@@ -40,18 +41,6 @@ double brute_nearest(const Vec3& p, const std::vector<double>& x, const Triangle
   for (const auto& t : triangles)
     best = std::min(best, point_triangle_distance(p, at(t[0]), at(t[1]), at(t[2])));
   return best;
-}
-
-TEST(SurfaceDistance, PointToTriangleInEveryRegion) {
-  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(0.2, 0.2, 0.5), a, b, c), 0.5);         // the face
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(-1, -1, 0), a, b, c), std::sqrt(2.0));  // a
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(2, 0, 0), a, b, c), 1.0);               // b
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(0.5, -2, 0), a, b, c), 2.0);            // edge ab
-  EXPECT_NEAR(point_triangle_distance(Vec3(1, 1, 0), a, b, c), std::sqrt(0.5), 1e-15);  // bc
-  // A degenerate triangle is its longest edge.
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(0.5, 1, 0), a, b, Vec3(0.5, 0, 0)), 1.0);
-  EXPECT_DOUBLE_EQ(point_triangle_distance(Vec3(0, 3, 4), a, a, a), 5.0);
 }
 
 // A sheet slid along itself by less than its spacing is the same surface: the

@@ -15,14 +15,15 @@
 #include "chart/loglog_chart.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
-#include "learn/chamfer.h"
-#include "learn/fit_problem.h"
-#include "learn/fitted_output.h"
-#include "learn/global_search.h"
-#include "learn/input_starts.h"
-#include "learn/optimizer.h"
-#include "learn/reference_motion.h"
-#include "learn/uncertainty.h"
+#include "learn/fit/chamfer.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/fitted_output.h"
+#include "learn/fit/input_starts.h"
+#include "learn/motion/read_reference.h"
+#include "learn/motion/reference_motion.h"
+#include "learn/optim/global_search.h"
+#include "learn/optim/optimizer.h"
+#include "learn/optim/uncertainty.h"
 
 namespace neurocloth {
 namespace {

@@ -15,10 +15,10 @@
 #include "chart/loglog_chart.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
-#include "learn/fit_problem.h"
-#include "learn/fitted_output.h"
-#include "learn/online_adaptation.h"
-#include "learn/reference_motion.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/fitted_output.h"
+#include "learn/fit/online_adaptation.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

@@ -7,7 +7,7 @@
 #include "core/io/input_error.h"
 #include "core/io/physical_limits.h"
 #include "core/scene/element_weights.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 namespace {

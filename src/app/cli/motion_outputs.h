@@ -13,8 +13,8 @@
 
 #include "app/cli/commands.h"
 #include "core/scene/scene.h"
-#include "learn/motion_recording.h"
-#include "learn/pc2_writer.h"
+#include "learn/motion/motion_recording.h"
+#include "learn/motion/pc2_writer.h"
 
 namespace neurocloth {
 

@@ -4,7 +4,7 @@
 //   iteration 12/100  <what the command says>  ETA <= 40 s
 #include <string>
 
-#include "learn/optimizer.h"
+#include "learn/optim/optimizer.h"
 
 namespace neurocloth {
 

@@ -22,8 +22,8 @@
 #include "core/fuzzy/formats/rule_file.h"
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
-#include "learn/rule_examples.h"
-#include "learn/rule_tuning.h"
+#include "learn/rules/rule_examples.h"
+#include "learn/rules/rule_tuning.h"
 
 namespace neurocloth {
 namespace {

@@ -1,4 +1,4 @@
-#include "learn/streamed_file.h"
+#include "core/io/streamed_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

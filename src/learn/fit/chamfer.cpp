@@ -1,10 +1,11 @@
-#include "learn/chamfer.h"
+#include "learn/fit/chamfer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "learn/point_tree.h"
+#include "core/geometry/nearest_on_triangle.h"
+#include "core/geometry/point_tree.h"
 
 namespace neurocloth {
 
@@ -46,46 +47,6 @@ RobustValue robust_loss(const ChamferSettings& s, double d2) {
       return {c2 * std::log1p(d2 / c2), 1 / (1 + d2 / c2)};
   }
   return {d2, 1};
-}
-
-std::array<double, 3> nearest_on_triangle(const Vec3& y, const Vec3& a, const Vec3& b,
-                                          const Vec3& c) {
-  // Voronoi regions of the corners, then the edges, then the face (Ericson,
-  // Real-Time Collision Detection, 5.1.5), in barycentric weights.
-  const Vec3 ab = b - a, ac = c - a, ay = y - a;
-  const double d1 = ab.dot(ay), d2 = ac.dot(ay);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Vec3 by = y - b;
-  const double d3 = ab.dot(by), d4 = ac.dot(by);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cy = y - c;
-  const double d5 = ab.dot(cy), d6 = ac.dot(cy);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double sum = va + vb + vc;
-  if (!(sum > 0)) {
-    // Degenerate (a triangle of zero area that no corner or edge region
-    // claimed): its nearest corner.
-    const double da = ay.squaredNorm(), db = by.squaredNorm(), dc = cy.squaredNorm();
-    if (da <= db && da <= dc) return {1, 0, 0};
-    return db <= dc ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{0, 0, 1};
-  }
-  const double v = vb / sum, w = vc / sum;
-  return {1 - v - w, v, w};
 }
 
 ClothSurface::ClothSurface(std::vector<std::array<std::int32_t, 3>> tris, std::size_t nodes)

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "core/base/vec3.h"
-#include "learn/frame_loss.h"
+#include "learn/fit/frame_loss.h"
 
 namespace neurocloth {
 
@@ -48,12 +48,6 @@ struct RobustValue {
   double value, slope;
 };
 RobustValue robust_loss(const ChamferSettings& settings, double d2);
-
-// The nearest point of triangle (a, b, c) to y, as barycentric weights (each
-// in [0, 1], summing to 1). A degenerate triangle gives its nearest edge or
-// corner.
-std::array<double, 3> nearest_on_triangle(const Vec3& y, const Vec3& a, const Vec3& b,
-                                          const Vec3& c);
 
 // The cloth's surface: triangles over the network's nodes, and which
 // triangles each node is a corner of.

@@ -5,7 +5,7 @@
 #include <variant>
 
 #include "core/modules/module_set.h"
-#include "learn/fit_problem_impl.h"
+#include "learn/fit/fit_problem_impl.h"
 
 namespace neurocloth {
 using namespace fit_detail;

@@ -7,7 +7,7 @@
 #include "core/io/input_error.h"
 #include "core/io/physical_limits.h"
 #include "core/modules/module_set.h"
-#include "learn/fit_problem_impl.h"
+#include "learn/fit/fit_problem_impl.h"
 
 namespace neurocloth {
 using namespace fit_detail;

@@ -1,4 +1,4 @@
-#include "learn/fit_problem.h"
+#include "learn/fit/fit_problem.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include "core/io/physical_limits.h"
 #include "core/modules/module_set.h"
 #include "core/network/parameter_id.h"
-#include "learn/fit_problem_impl.h"
-#include "learn/rollout.h"
+#include "learn/fit/fit_problem_impl.h"
+#include "learn/fit/rollout.h"
 
 namespace neurocloth {
 using namespace fit_detail;

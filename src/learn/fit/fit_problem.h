@@ -17,8 +17,8 @@
 
 #include "core/fuzzy/linguistic_variable.h"
 #include "core/scene/scene.h"
-#include "learn/chamfer.h"
-#include "learn/reference_motion.h"
+#include "learn/fit/chamfer.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

@@ -13,8 +13,8 @@
 
 #include "core/network/parameter_id.h"
 #include "core/scene/fuzzy_material.h"
-#include "learn/fit_problem.h"
-#include "learn/rollout.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/rollout.h"
 
 namespace neurocloth {
 namespace fit_detail {

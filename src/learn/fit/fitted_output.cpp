@@ -1,4 +1,4 @@
-#include "learn/fitted_output.h"
+#include "learn/fit/fitted_output.h"
 
 #include <algorithm>
 #include <cmath>

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "learn/uncertainty.h"
+#include "learn/optim/uncertainty.h"
 
 namespace neurocloth {
 

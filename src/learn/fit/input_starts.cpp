@@ -1,7 +1,7 @@
-#include "learn/input_starts.h"
+#include "learn/fit/input_starts.h"
 
 #include "core/io/input_error.h"
-#include "learn/global_search.h"
+#include "learn/optim/global_search.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "learn/fit_problem.h"
+#include "learn/fit/fit_problem.h"
 
 namespace neurocloth {
 

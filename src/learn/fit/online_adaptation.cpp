@@ -1,4 +1,4 @@
-#include "learn/online_adaptation.h"
+#include "learn/fit/online_adaptation.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -16,7 +16,7 @@
 // oscillating parameter settles by itself.
 #include <Eigen/Core>
 
-#include "learn/fit_problem.h"
+#include "learn/fit/fit_problem.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "learn/rollout.h"
+#include "learn/fit/rollout.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +13,7 @@
 #include "core/integrators/projective.h"
 #include "core/io/physical_limits.h"
 #include "core/scene/scene.h"
+#include "core/simulation/network_propagation.h"
 
 namespace neurocloth {
 namespace {
@@ -183,12 +184,11 @@ void Rollout::add_loss_gradient(std::size_t j, ClothState& adj) const {
     add(f, false);
 }
 
-// One network step backwards. Forward it was (integrator network, in == s_k):
-//   v' = v + h free (w F(s_k) + g),  p' = p + h v',  then the constraints.
-// So, from dE/d(constrained p', v') in adj:
-//   constraints, last first -> dE/d(p', v') and dE/d(p) through their start;
-//   lv = dE/dv' + h dE/dp',  dE/dF = h free w lv,  dE/dw += h free F.lv;
-//   dE/dp = dE/dp' (+ the constraints' share),  dE/dv = lv, then F's own adjoint.
+// One step backwards: the constraints, last first, give dE/d(p', v') before
+// them and dE/dp through their start; the integrator's adjoint (the
+// network's, network_propagation.h, or projective's, projective.h) carries
+// it through the step and the springs; the other force modules' adjoint,
+// the same for both, through the forces the step read.
 void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothState& in,
                             const ClothState* pre, ClothState& adj, RolloutGradients& g) {
   Tape& t = *tape_;
@@ -217,41 +217,10 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
         adj.y[i] += t.adj_before.y[i];
         adj.z[i] += t.adj_before.z[i];
       }
-    for (std::size_t j = 0; j < net.force_modules.size(); ++j)
-      net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
-                                               g.force_modules[j].data());
-    return;
+  } else {
+    network_step_adjoint(net, t.inputs, in, h, constrained ? &t.adj_before : nullptr, adj,
+                         t.adj_force, t.forces, g.springs, adj_w);
   }
-  const double* w = net.masses.inverse_mass.data();
-  const double* free = net.masses.free.data();
-  double* const lp[3] = {adj.x.data(), adj.y.data(), adj.z.data()};
-  double* const lv[3] = {adj.vx.data(), adj.vy.data(), adj.vz.data()};
-  double* const lF[3] = {t.adj_force.x.data(), t.adj_force.y.data(), t.adj_force.z.data()};
-  for (int c = 0; c < 3; ++c) {
-    double* __restrict p = lp[c];
-    double* __restrict v = lv[c];
-    double* __restrict f = lF[c];
-#pragma GCC ivdep
-    for (std::size_t i = 0; i < n; ++i) {
-      v[i] += h * p[i];
-      f[i] = h * free[i] * w[i] * v[i];
-    }
-  }
-  if (constrained) {
-    const double* const lb[3] = {t.adj_before.x.data(), t.adj_before.y.data(),
-                                 t.adj_before.z.data()};
-    for (int c = 0; c < 3; ++c)
-      for (std::size_t i = 0; i < n; ++i)
-        lp[c][i] += lb[c][i];
-  }
-  if (adj_w) {
-    net.net_forces(in, t.inputs, t.forces);
-    for (std::size_t i = 0; i < n; ++i)
-      adj_w[i] +=
-          h * free[i] *
-          (t.forces.x[i] * adj.vx[i] + t.forces.y[i] * adj.vy[i] + t.forces.z[i] * adj.vz[i]);
-  }
-  spring_forces_adjoint(net, in, t.adj_force, adj, g.springs, t.inputs.kernel);
   for (std::size_t j = 0; j < net.force_modules.size(); ++j)
     net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
                                              g.force_modules[j].data());

@@ -16,7 +16,7 @@
 #include "core/integrators/integrator.h"
 #include "core/network/cloth_network.h"
 #include "core/network/spring_adjoint.h"
-#include "learn/frame_loss.h"
+#include "learn/fit/frame_loss.h"
 
 namespace neurocloth {
 

@@ -1,12 +1,12 @@
-#include "learn/cache_vertex_match.h"
+#include "learn/motion/cache_vertex_match.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/geometry/point_tree.h"
 #include "core/io/input_error.h"
-#include "learn/point_tree.h"
 
 namespace neurocloth {
 namespace {

@@ -1,4 +1,4 @@
-#include "learn/cloud_sequence.h"
+#include "learn/motion/cloud_sequence.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,8 +8,8 @@
 
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
-#include "learn/ply_points.h"
-#include "learn/xyz_points.h"
+#include "learn/motion/ply_points.h"
+#include "learn/motion/xyz_points.h"
 
 namespace neurocloth {
 namespace {

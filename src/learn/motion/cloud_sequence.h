@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/base/vec3.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "learn/marker_csv.h"
+#include "learn/motion/marker_csv.h"
 
 #include <cmath>
 #include <cstdio>

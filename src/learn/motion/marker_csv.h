@@ -24,7 +24,7 @@
 #include <cstddef>
 #include <string>
 
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

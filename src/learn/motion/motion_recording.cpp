@@ -1,4 +1,4 @@
-#include "learn/motion_recording.h"
+#include "learn/motion/motion_recording.h"
 
 #include <cmath>
 #include <cstring>

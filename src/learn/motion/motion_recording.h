@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/base/vec3.h"
-#include "learn/reference_motion.h"
-#include "learn/streamed_file.h"
+#include "core/io/streamed_file.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "learn/pc2_writer.h"
+#include "learn/motion/pc2_writer.h"
 
 #include <cmath>
 #include <cstring>

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "core/io/streamed_file.h"
 #include "core/network/cloth_topology.h"
-#include "learn/streamed_file.h"
 
 namespace neurocloth {
 

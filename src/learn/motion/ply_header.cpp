@@ -1,10 +1,10 @@
-#include "learn/ply_header.h"
+#include "learn/motion/ply_header.h"
 
 #include <string_view>
 
 #include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 namespace {

@@ -1,4 +1,4 @@
-#include "learn/ply_points.h"
+#include "learn/motion/ply_points.h"
 
 #include <cmath>
 #include <cstdint>
@@ -7,8 +7,8 @@
 
 #include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
-#include "learn/ply_header.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/ply_header.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 namespace {

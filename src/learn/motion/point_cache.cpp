@@ -1,4 +1,4 @@
-#include "learn/point_cache.h"
+#include "learn/motion/point_cache.h"
 
 #include <cctype>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "core/io/input_error.h"
 #include "core/io/text_file.h"
 #include "core/scene/obj_mesh_builder.h"
-#include "learn/cache_vertex_match.h"
+#include "learn/motion/cache_vertex_match.h"
 
 namespace neurocloth {
 namespace {

@@ -84,20 +84,8 @@ inline constexpr double kMaxReferenceCoordinate = 1e6;  // m
 // True when every coordinate of `p` is finite and within kMaxReferenceCoordinate.
 bool reference_position_ok(const Vec3& p);
 
-// Reads a recording or a CSV (markers or a cloud, told apart by the header),
-// told apart by their first bytes (the recording's magic line, else the CSV);
-// a folder or a numbered pattern ("scan_%04d.ply") of PLY / XYZ files; a .pc2
-// or .mdd cache. `node_count` is the scene's: every node must be below it,
-// and a recording or cache must hold exactly that many. Throws InputError
-// naming the file, the line or byte offset and the field on any bad input.
-ReferenceMotion read_reference(const std::string& path, std::size_t node_count,
-                               const ReferenceOptions& options = {});
 // Where each of `scene`'s file nodes starts (a point cache's mesh is matched
 // against these: ReferenceOptions::scene_positions).
 struct Scene;
 std::vector<Vec3> file_order_positions(const Scene& scene);
-// The same on bytes already in memory; `path` names them in messages.
-ReferenceMotion parse_reference(const std::string& bytes, const std::string& path,
-                                std::size_t node_count);
-
 }  // namespace neurocloth

@@ -1,4 +1,4 @@
-#include "learn/reference_pose.h"
+#include "learn/motion/reference_pose.h"
 
 #include <algorithm>
 

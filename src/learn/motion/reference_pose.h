@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 

@@ -1,11 +1,11 @@
-#include "learn/xyz_points.h"
+#include "learn/motion/xyz_points.h"
 
 #include <cmath>
 #include <string_view>
 
 #include "core/io/csv_fields.h"
 #include "core/io/input_error.h"
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 namespace {

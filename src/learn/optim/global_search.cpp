@@ -1,4 +1,4 @@
-#include "learn/global_search.h"
+#include "learn/optim/global_search.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "learn/optimizer.h"
+#include "learn/optim/optimizer.h"
 
 #include <LBFGS.h>
 

@@ -1,4 +1,4 @@
-#include "learn/uncertainty.h"
+#include "learn/optim/uncertainty.h"
 
 #include <Eigen/Eigenvalues>
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "learn/optimizer.h"
+#include "learn/optim/optimizer.h"
 
 namespace neurocloth {
 

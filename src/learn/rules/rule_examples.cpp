@@ -1,4 +1,4 @@
-#include "learn/rule_examples.h"
+#include "learn/rules/rule_examples.h"
 
 #include <sstream>
 #include <string_view>

@@ -1,4 +1,4 @@
-#include "learn/rule_tuning.h"
+#include "learn/rules/rule_tuning.h"
 
 #include <Eigen/QR>
 

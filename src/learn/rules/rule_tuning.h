@@ -26,9 +26,9 @@
 #include <Eigen/Core>
 
 #include "core/fuzzy/inference.h"
-#include "learn/optimizer.h"
-#include "learn/rule_examples.h"
-#include "learn/term_constraints.h"
+#include "learn/optim/optimizer.h"
+#include "learn/rules/rule_examples.h"
+#include "learn/rules/term_constraints.h"
 
 namespace neurocloth {
 

@@ -1,4 +1,4 @@
-#include "learn/term_constraints.h"
+#include "learn/rules/term_constraints.h"
 
 #include <algorithm>
 #include <cmath>

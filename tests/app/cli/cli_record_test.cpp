@@ -6,11 +6,12 @@
 
 #include <tuple>
 
+#include "core/io/streamed_file.h"
 #include "core/scene/grid_builder.h"
 #include "core/scene/mesh_node_order.h"
 #include "core/scene/obj_mesh_writer.h"
-#include "learn/reference_motion.h"
-#include "learn/streamed_file.h"
+#include "learn/motion/read_reference.h"
+#include "learn/motion/reference_motion.h"
 #include "support/cli_fixture.h"
 #include "support/shuffled_grid.h"
 

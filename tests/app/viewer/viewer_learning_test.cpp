@@ -9,7 +9,7 @@
 #include "core/io/asset_paths.h"
 #include "core/scene/scene.h"
 #include "core/simulation/simulation.h"
-#include "learn/motion_recording.h"
+#include "learn/motion/motion_recording.h"
 #include "render/renderer.h"
 #include "support/viewer_fixture.h"
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "learn/fit_problem.h"
-#include "learn/rollout.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/rollout.h"
 #include "support/gradient_check.h"
 #include "support/scene_builder.h"
 

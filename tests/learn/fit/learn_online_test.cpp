@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "learn/online_adaptation.h"
+#include "learn/fit/online_adaptation.h"
 #include "support/recorded_reference.h"
 #include "support/scene_builder.h"
 

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <random>
 
-#include "learn/fit_problem.h"
-#include "learn/optimizer.h"
-#include "learn/rollout.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/rollout.h"
+#include "learn/optim/optimizer.h"
 #include "support/gradient_check.h"
 #include "support/input_error_check.h"
 #include "support/recorded_reference.h"

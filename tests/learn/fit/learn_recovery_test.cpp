@@ -10,10 +10,10 @@
 #include <random>
 #include <tuple>
 
-#include "learn/fit_problem.h"
-#include "learn/global_search.h"
-#include "learn/input_starts.h"
-#include "learn/optimizer.h"
+#include "learn/fit/fit_problem.h"
+#include "learn/fit/input_starts.h"
+#include "learn/optim/global_search.h"
+#include "learn/optim/optimizer.h"
 #include "support/recorded_reference.h"
 #include "support/sampled_cloud.h"
 #include "support/scene_builder.h"

@@ -1,4 +1,4 @@
-#include "learn/cache_vertex_match.h"
+#include "learn/motion/cache_vertex_match.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "learn/cloud_sequence.h"
+#include "learn/motion/cloud_sequence.h"
 
 #include <gtest/gtest.h>
 

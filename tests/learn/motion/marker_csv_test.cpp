@@ -1,7 +1,8 @@
-#include "learn/marker_csv.h"
+#include "learn/motion/marker_csv.h"
 
 #include <gtest/gtest.h>
 
+#include "learn/motion/read_reference.h"
 #include "support/reference_error.h"
 
 namespace neurocloth {

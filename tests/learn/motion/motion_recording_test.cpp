@@ -1,4 +1,4 @@
-#include "learn/motion_recording.h"
+#include "learn/motion/motion_recording.h"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 
 #include "core/base/same_bits.h"
 #include "core/io/text_file.h"
+#include "learn/motion/read_reference.h"
 #include "support/reference_error.h"
 #include "support/scene_test_support.h"
 

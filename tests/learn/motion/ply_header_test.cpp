@@ -1,10 +1,10 @@
-#include "learn/ply_header.h"
+#include "learn/motion/ply_header.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 #include "support/input_error_check.h"
 
 namespace neurocloth {

@@ -1,4 +1,4 @@
-#include "learn/ply_points.h"
+#include "learn/motion/ply_points.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <limits>
 
 #include "core/io/text_file.h"
-#include "learn/reference_motion.h"
-#include "learn/xyz_points.h"
+#include "learn/motion/reference_motion.h"
+#include "learn/motion/xyz_points.h"
 #include "support/input_error_check.h"
 
 namespace neurocloth {

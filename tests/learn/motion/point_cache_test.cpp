@@ -1,4 +1,4 @@
-#include "learn/point_cache.h"
+#include "learn/motion/point_cache.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
+#include "learn/motion/read_reference.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The reference's pose at a moment (the window's ghost points): linear between
 // the frames around it, clamped at the ends, and a marker only where the
 // nearer frame saw it.
-#include "learn/reference_pose.h"
+#include "learn/motion/reference_pose.h"
 
 #include <gtest/gtest.h>
 

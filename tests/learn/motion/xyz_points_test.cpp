@@ -1,8 +1,8 @@
-#include "learn/xyz_points.h"
+#include "learn/motion/xyz_points.h"
 
 #include <gtest/gtest.h>
 
-#include "learn/reference_motion.h"
+#include "learn/motion/reference_motion.h"
 #include "support/input_error_check.h"
 
 namespace neurocloth {

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "learn/global_search.h"
-#include "learn/optimizer.h"
+#include "learn/optim/global_search.h"
+#include "learn/optim/optimizer.h"
 
 namespace neurocloth {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "core/fuzzy/formats/fcl_reader.h"
 #include "core/io/input_error.h"
-#include "learn/rule_examples.h"
+#include "learn/rules/rule_examples.h"
 
 namespace neurocloth {
 namespace {

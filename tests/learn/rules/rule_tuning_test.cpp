@@ -11,8 +11,8 @@
 #include "core/fuzzy/formats/fcl_reader.h"
 #include "core/fuzzy/inference.h"
 #include "core/io/input_error.h"
-#include "learn/rule_tuning.h"
-#include "learn/term_constraints.h"
+#include "learn/rules/rule_tuning.h"
+#include "learn/rules/term_constraints.h"
 
 namespace neurocloth {
 namespace {
