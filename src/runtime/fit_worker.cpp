@@ -3,6 +3,7 @@
 #include <cmath>
 #include <exception>
 
+#include "learn/fit/fit_columns.h"
 #include "learn/fit/input_starts.h"
 
 namespace neurocloth {
@@ -16,15 +17,6 @@ bool material_block(const std::string& name) {
        {"spring_constant", "shear_constant", "bend_constant", "viscosity", "node_mass", "friction"})
     if (name == m) return true;
   return false;
-}
-
-// A block's value, or for a per-element block its mean (geometric in log space).
-double block_value(const FitBlock& b, const Eigen::VectorXd& theta) {
-  double sum = 0;  // a plain loop: GCC 12 misreads Eigen's AVX-512 reductions
-  for (std::size_t i = b.offset; i < b.offset + b.count; ++i)
-    sum += theta[Eigen::Index(i)];
-  const double mean = sum / double(b.count);
-  return b.log_space ? std::exp(mean) : mean;
 }
 
 }  // namespace
@@ -49,7 +41,9 @@ FitOutcome fit_outcome(const FitProblem& problem, const Scene& scene,
   out.command.material = problem.fitted_scene(theta).material;
   out.words = problem.inputs_in_words(theta);
   const ParameterNames names = parameter_names(scene);
-  for (const FitBlock& b : problem.blocks()) {
+  const std::vector<double> values = block_values(problem, theta);
+  for (std::size_t c = 0; c < problem.blocks().size(); ++c) {
+    const FitBlock& b = problem.blocks()[c];
     if (material_block(b.name) && b.count == 1) continue;  // in the material
     if (b.count != 1) {
       out.not_applied.push_back(b.name + ": per element (the live cloth takes one value)");
@@ -61,7 +55,7 @@ FitOutcome fit_outcome(const FitProblem& problem, const Scene& scene,
     }
     if (const std::optional<ParameterId> id = parse_parameter(b.name, names))
       (id->kind == ParameterId::Kind::input ? out.command.inputs : out.command.module_parameters)
-          .push_back({*id, block_value(b, theta)});
+          .push_back({*id, values[c]});
     else
       out.not_applied.push_back(b.name + ": not a live parameter");
   }
@@ -147,10 +141,9 @@ void FitWorker::run(FitJob job) {
   try {
     FitProblem problem(*job.scene, *job.reference, job.settings);
     update([&](FitProgress& p) {
-      for (const FitBlock& b : problem.blocks()) {
-        p.names.push_back(b.count == 1 ? b.name : b.name + (b.log_space ? "_geomean" : "_mean"));
+      p.names = block_names(problem);
+      for (const FitBlock& b : problem.blocks())
         p.units.push_back(b.unit);
-      }
       p.values.resize(p.names.size());
       p.duration = problem.duration();
     });
@@ -166,10 +159,11 @@ void FitWorker::run(FitJob job) {
 void FitWorker::publish_row(FitProblem& problem, const Scene& scene, const Eigen::VectorXd& theta,
                             double loss, double rms, int iteration, double online_time) {
   auto outcome = std::make_shared<const FitOutcome>(fit_outcome(problem, scene, theta));
+  const std::vector<double> values = block_values(problem, theta);
   int row = 0;
   update([&](FitProgress& p) {
-    for (std::size_t c = 0; c < problem.blocks().size(); ++c)
-      p.values[c].push_back(block_value(problem.blocks()[c], theta));
+    for (std::size_t c = 0; c < values.size(); ++c)
+      p.values[c].push_back(values[c]);
     p.loss.push_back(loss);
     p.rms_m.push_back(rms);
     p.iteration = iteration;

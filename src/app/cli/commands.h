@@ -212,10 +212,6 @@ int run_fit_online(const FitOptions& options);
 // fit problem (InputError naming the file or option). fit_command.cpp.
 class FitProblem;
 FitProblem load_fit_problem(const FitOptions& options, const Scene& scene);
-// Each block of theta as one value (a per-element block as its geometric mean),
-// and its name in the progress line and the CSV ("spring_constant_geomean").
-std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta);
-std::vector<std::string> block_names(const FitProblem& problem);
 // Refuses an output of the fit (FITTED.json and its companions) that is one of
 // the files `scene` was read from (InputError naming --out).
 void check_fit_outputs(const FitOptions& options, const Scene& scene);

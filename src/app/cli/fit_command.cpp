@@ -16,6 +16,7 @@
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
 #include "learn/fit/chamfer.h"
+#include "learn/fit/fit_columns.h"
 #include "learn/fit/fit_problem.h"
 #include "learn/fit/fitted_output.h"
 #include "learn/fit/input_starts.h"
@@ -95,38 +96,15 @@ void check_fit_outputs(const FitOptions& o, const Scene& scene) {
 
 namespace {
 
-// What a block stands for in one column (progress line, CSV): its value, or
-// for a per-element block the geometric (log space) or arithmetic mean.
-struct Column {
-  std::string name;
-  const FitBlock* block;
-};
-
-std::vector<Column> columns_of(const FitProblem& problem) {
-  std::vector<Column> out;
-  for (const FitBlock& b : problem.blocks())
-    out.push_back({b.count == 1 ? b.name : b.name + (b.log_space ? "_geomean" : "_mean"), &b});
-  return out;
-}
-
-double column_value(const Column& c, const Eigen::VectorXd& theta) {
-  const FitBlock& b = *c.block;
-  // A plain loop: GCC 12 misreads Eigen's AVX-512 reductions as uninitialised.
-  double sum = 0;
-  for (std::size_t i = b.offset; i < b.offset + b.count; ++i)
-    sum += theta[Eigen::Index(i)];
-  const double mean = sum / double(b.count);
-  return b.log_space ? std::exp(mean) : mean;
-}
-
 // The fit's fields of the progress line: loss, RMS and each column's value.
-std::string progress_details(const IterationInfo& it, const Eigen::VectorXd& theta, double rms_m,
-                             const std::vector<Column>& columns) {
+std::string progress_details(const IterationInfo& it, double rms_m,
+                             const std::vector<std::string>& columns,
+                             const std::vector<double>& values) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "loss %.6g  RMS %.4g mm", it.loss, rms_m * 1e3);
   std::string line = buf;
-  for (const Column& c : columns) {
-    std::snprintf(buf, sizeof buf, "  %s %.5g", c.name.c_str(), column_value(c, theta));
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    std::snprintf(buf, sizeof buf, "  %s %.5g", columns[c].c_str(), values[c]);
     line += buf;
   }
   return line;
@@ -169,14 +147,14 @@ void print_uncertainty(const UncertaintyReport& r, const FitProblem& problem) {
 // The note's parameter list: each unknown with its uncertainty when there is
 // one, else each column's value.
 std::vector<ParameterUncertainty> summary_parameters(const UncertaintyReport& r,
-                                                     const std::vector<Column>& columns,
-                                                     const Eigen::VectorXd& theta) {
+                                                     const std::vector<std::string>& columns,
+                                                     const std::vector<double>& values) {
   if (r.computed) return r.parameters;
   std::vector<ParameterUncertainty> out;
-  for (const Column& c : columns) {
+  for (std::size_t c = 0; c < columns.size(); ++c) {
     ParameterUncertainty p;
-    p.name = c.name;
-    p.value = column_value(c, theta);
+    p.name = columns[c];
+    p.value = values[c];
     p.sd = p.relative_sd = std::nan("");
     out.push_back(p);
   }
@@ -219,20 +197,6 @@ FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   return FitProblem(scene, reference, settings);
 }
 
-std::vector<double> block_values(const FitProblem& problem, const Eigen::VectorXd& theta) {
-  std::vector<double> v;
-  for (const Column& c : columns_of(problem))
-    v.push_back(column_value(c, theta));
-  return v;
-}
-
-std::vector<std::string> block_names(const FitProblem& problem) {
-  std::vector<std::string> v;
-  for (const Column& c : columns_of(problem))
-    v.push_back(c.name);
-  return v;
-}
-
 int run_fit(const FitOptions& o) {
   // The online mode shares the tape budget and the outputs: checked before
   // anything runs, whichever mode.
@@ -244,7 +208,7 @@ int run_fit(const FitOptions& o) {
 
   const Scene scene = load_scene(o.scene);
   FitProblem problem = load_fit_problem(o, scene);
-  const std::vector<Column> columns = columns_of(problem);
+  const std::vector<std::string> columns = block_names(problem);
   const double observations = double(problem.observations());
   std::printf("fit: %s to %s: %zu unknowns, %zu observed %s over %g s, %s\n", scene.name.c_str(),
               o.reference.c_str(), problem.size(), problem.observations(),
@@ -261,8 +225,7 @@ int run_fit(const FitOptions& o) {
                                                      : std::sqrt(2 * loss / observations);
   };
   FitHistory history;
-  for (const Column& c : columns)
-    history.columns.push_back(c.name);
+  history.columns = columns;
   ProgressLine progress(o.max_iterations, o.time_budget);
   const InterruptScope ctrl_c;
   opt.should_stop = [] { return InterruptScope::interrupted(); };
@@ -275,11 +238,10 @@ int run_fit(const FitOptions& o) {
   const OptimizerResult result =
       minimize_from(objective, starts.starts, opt, [&](const IterationInfo& it) {
         const Eigen::VectorXd theta = problem.inside_limits(it.theta);
-        FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, theta), it.seconds, {}};
-        for (const Column& c : columns)
-          row.parameters.push_back(column_value(c, theta));
+        FitHistoryRow row{it.iteration, it.loss, rms_of(it.loss, theta), it.seconds,
+                          block_values(problem, theta)};
         history.rows.push_back(row);
-        progress.show(it, progress_details(it, theta, row.rms_m, columns));
+        progress.show(it, progress_details(it, row.rms_m, columns, row.parameters));
         return !InterruptScope::interrupted();
       });
   progress.close();
@@ -323,7 +285,7 @@ int run_fit(const FitOptions& o) {
   summary.iterations = result.iterations;
   summary.loss = result.best_loss;
   summary.rms_m = rms_of(result.best_loss, best);
-  summary.parameters = summary_parameters(uncertainty, columns, best);
+  summary.parameters = summary_parameters(uncertainty, columns, block_values(problem, best));
   summary.words = words;
   summary.uncertainty =
       uncertainty.computed

@@ -15,6 +15,7 @@
 #include "chart/loglog_chart.h"
 #include "core/io/input_error.h"
 #include "core/scene/scene.h"
+#include "learn/fit/fit_columns.h"
 #include "learn/fit/fit_problem.h"
 #include "learn/fit/fitted_output.h"
 #include "learn/fit/online_adaptation.h"

@@ -2,7 +2,8 @@
 // The learning stage's objective (paper eq. 18-19): the squared distance between
 // the network's node positions and a reference motion, summed over the frames
 // and the observed nodes, as a function of the network's weights, with its
-// exact gradient by back-propagation through time (rollout.h, step_adjoint.h).
+// exact gradient by back-propagation through time (rollout.h; each step's
+// adjoint beside its step: network_propagation.h, projective.h).
 //
 // The unknowns form one vector theta in blocks: a family value (the spring
 // constant, one number) or, per element, one weight per spring or node (the

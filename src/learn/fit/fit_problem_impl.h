@@ -1,8 +1,10 @@
 #pragma once
-// FitProblem's inside, shared by the files that hold it: fit_parameters.cpp
-// (the --params names to blocks of theta), fit_mapping.cpp (theta to the model
-// and the gradient back) and fit_problem.cpp (the reference, the plan, the
-// public calls).
+// FitProblem's inside, shared by the files that hold it: fit_problem.cpp (the
+// model, construction, theta's coordinates), fit_parameters.cpp (the --params
+// names to blocks of theta), fit_mapping.cpp (theta to the model and the
+// gradient back), observation_plan.cpp (the reference's frames to the plan),
+// fit_loss.cpp (the loss at theta) and fitted_scene.cpp (theta written back
+// into a scene).
 #include <cmath>
 #include <cstdint>
 #include <map>

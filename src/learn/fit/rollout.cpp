@@ -2,91 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
-
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
 
 #include "core/integrators/integrator.h"
 #include "core/integrators/projective.h"
-#include "core/io/physical_limits.h"
-#include "core/scene/scene.h"
 #include "core/simulation/network_propagation.h"
+#include "learn/fit/rollout_tape.h"
 
 namespace neurocloth {
-namespace {
-
-// A copy of `from` in `to` that goes to memory without first reading each of
-// `to`'s cache lines (non-temporal stores) where the CPU has them. A tape is
-// written once and read far later, so plain stores would fetch every line
-// only to overwrite it (twice the memory traffic) and push the step's own
-// state out of the cache: on the 32 x 32 cloth's 500 steps the tape's writing
-// took about a fifth of the gradient, and this halves it (learn_benchmark).
-// finish_tape() orders them before anything that follows.
-#if defined(__AVX512F__)
-constexpr std::size_t kStreamed = 8;  // doubles per store
-void stream(double* to, const double* from) {
-  _mm512_stream_pd(to, _mm512_loadu_pd(from));
-}
-#elif defined(__AVX__)
-constexpr std::size_t kStreamed = 4;
-void stream(double* to, const double* from) {
-  _mm256_stream_pd(to, _mm256_loadu_pd(from));
-}
-#elif defined(__SSE2__)
-constexpr std::size_t kStreamed = 2;
-void stream(double* to, const double* from) {
-  _mm_stream_pd(to, _mm_loadu_pd(from));
-}
-#else
-constexpr std::size_t kStreamed = 0;  // plain copies
-void stream(double*, const double*) {}
-#endif
-
-void write_to_tape(const ClothState& from, ClothState& to) {
-  for (auto field : {&ClothState::x, &ClothState::y, &ClothState::z, &ClothState::vx,
-                     &ClothState::vy, &ClothState::vz}) {
-    const double* src = (from.*field).data();
-    double* dst = (to.*field).data();
-    const std::size_t n = (from.*field).size();
-    std::size_t i = 0;
-    if constexpr (kStreamed > 0) {
-      // A streaming store needs an address aligned to its width.
-      for (; i < n && reinterpret_cast<std::uintptr_t>(dst + i) % (kStreamed * sizeof(double)); ++i)
-        dst[i] = src[i];
-      for (; i + kStreamed <= n; i += kStreamed)
-        stream(dst + i, src + i);
-    }
-    for (; i < n; ++i)
-      dst[i] = src[i];
-  }
-}
-
-void finish_tape() {
-#if defined(__SSE2__)
-  _mm_sfence();
-#endif
-}
-
-}  // namespace
-
-struct Rollout::Tape {
-  std::vector<ClothState> checkpoints;  // states 0, K, 2K, ... (recomputing mode)
-  std::vector<ClothState> states;       // one segment: states k0 .. k0 + K
-  std::vector<ClothState> pre;          // per step of the segment, before each constraint
-  ClothState work[2];                   // the forward run's two states when it keeps every one
-  NodeVectors forces, adj_force, adj_before;
-  ClothState adj;
-  ForceInputs inputs;
-  std::unique_ptr<Integrator> integrator;
-  // A projective run's integrator (the fit's hooks, projective.h), and
-  // dE/d(the Chebyshev rate its run measured), carried back to that step.
-  ProjectiveIntegrator* projective = nullptr;
-  double rate_adjoint = 0;
-  IntegratorKind kind = IntegratorKind::network;
-};
 
 Rollout::Rollout(ClothState initial, StepPlan steps, ObservationPlan observations,
                  std::size_t tape_budget_bytes)
@@ -354,103 +277,6 @@ void Rollout::set_initial(const ClothState& initial) {
   if (initial.size() != initial_.size())
     throw std::invalid_argument("rollout: a new initial state of another size");
   initial_ = initial;
-}
-
-StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count) {
-  StepPlan w;
-  const auto a = static_cast<std::ptrdiff_t>(first), b = static_cast<std::ptrdiff_t>(first + count);
-  w.start.assign(plan.start.begin() + a, plan.start.begin() + b);
-  w.size.assign(plan.size.begin() + a, plan.size.begin() + b);
-  return w;
-}
-
-std::size_t ObservationPlan::data_count() const {
-  std::size_t n = nodes.size();
-  for (const auto& c : clouds)
-    n += c->size();
-  return n;
-}
-
-ObservationPlan window_of(const ObservationPlan& obs, std::size_t first, std::size_t count) {
-  ObservationPlan w;
-  w.clouds = obs.clouds;
-  for (const ObservationPlan::Frame& f : obs.frames) {
-    if (f.step < first || f.step >= first + count) continue;
-    ObservationPlan::Frame g = f;
-    g.step -= first;
-    if (f.cloud >= 0) {  // the window keeps its clouds' numbers
-      w.frames.push_back(g);
-      continue;
-    }
-    g.first = w.nodes.size();
-    w.nodes.insert(w.nodes.end(), obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first),
-                   obs.nodes.begin() + static_cast<std::ptrdiff_t>(f.first + f.count));
-    w.targets.insert(w.targets.end(), obs.targets.begin() + static_cast<std::ptrdiff_t>(f.first),
-                     obs.targets.begin() + static_cast<std::ptrdiff_t>(f.first + f.count));
-    w.frames.push_back(g);
-  }
-  return w;
-}
-
-namespace {
-
-// The scene's own run over the reference must be sound: the gradient of a run
-// that diverges — a fixed step above the stable step rings and levels off
-// (docs/stability.md) — says nothing about the scene, and its differences
-// disagree with any adjoint.
-void require_sound_run(Simulation& sim, double duration) {
-  if (sim.advance(duration) != RunStatus::ok || sim.check_result() != RunStatus::ok)
-    throw std::runtime_error("the scene's own run diverged before " + show_number(duration) +
-                             " s: " + sim.divergence_reason());
-  if (sim.budget_exhausted())
-    throw std::runtime_error("the scene's own run ran out of step budget before " +
-                             show_number(duration) + " s");
-}
-
-}  // namespace
-
-StepPlan plan_steps(const Scene& scene, double duration, std::size_t max_steps) {
-  StepPlan plan;
-  if (!(duration > 0)) return plan;
-  const double dt = scene.solver.dt;
-  if (!scene.solver.adaptive) {
-    // Simulation::advance's arithmetic: steps of dt, a shorter last one, and
-    // the end time exact.
-    double t = 0;
-    while (t < duration) {
-      if (plan.count() == max_steps)
-        throw std::runtime_error("more than " + std::to_string(max_steps) + " steps of " +
-                                 show_number(dt) + " s to reach t = " + show_number(duration) +
-                                 " s");
-      const double remaining = duration - t;
-      const bool last = remaining <= dt * (1.0 + 1e-9);
-      const bool whole = std::abs(remaining - dt) <= 1e-9 * dt;
-      const double h = last && !whole ? remaining : dt;
-      plan.start.push_back(t);
-      plan.size.push_back(h);
-      t = last ? duration : t + h;
-    }
-    Simulation sim = scene.make_simulation();
-    require_sound_run(sim, duration);
-    return plan;
-  }
-  Simulation sim = scene.make_simulation();
-  sim.set_observer([&](const StepEvent& e) {
-    if (!e.accepted) return;
-    // The steps may be far below dt (a stiff cloth): the count, not the
-    // duration, bounds the plan and every run of the fit. The simulation is
-    // this function's own, dropped as the exception leaves.
-    if (plan.count() == max_steps)
-      throw std::runtime_error("the scene's own adaptive run takes more than " +
-                               std::to_string(max_steps) +
-                               " steps to reach t = " + show_number(duration) + " s (steps of " +
-                               show_number(e.step) + " s at t = " + show_number(e.time) +
-                               " s); a fit runs at most that many: a shorter reference");
-    plan.start.push_back(e.time);
-    plan.size.push_back(e.step);
-  });
-  require_sound_run(sim, duration);
-  return plan;
 }
 
 }  // namespace neurocloth

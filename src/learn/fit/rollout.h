@@ -17,6 +17,8 @@
 #include "core/network/cloth_network.h"
 #include "core/network/spring_adjoint.h"
 #include "learn/fit/frame_loss.h"
+#include "learn/fit/observation_plan.h"
+#include "learn/fit/step_plan.h"
 
 namespace neurocloth {
 
@@ -30,42 +32,6 @@ struct RolloutModel {
   // with its iterations (projective.h: a fixed count, read backwards exactly).
   IntegratorKind integrator = IntegratorKind::network;
   int iterations = kDefaultProjectiveIterations;
-};
-
-// The steps a run takes, start time and size each: a fixed step, or the
-// accepted steps of the adaptive propagation held fixed while weights change.
-// A fit runs the scene to the reference's last frame many times: at most this
-// many steps (fixed, or the adaptive run's accepted steps).
-inline constexpr std::size_t kMaxFitSteps = 10000000;
-// And at most this many projective local-global iterations (steps x iterations).
-inline constexpr double kMaxFitIterations = 1e7;
-
-struct StepPlan {
-  std::vector<double> start, size;
-  std::size_t count() const { return size.size(); }
-  double end() const { return size.empty() ? 0.0 : start.back() + size.back(); }
-};
-
-// Where the loss compares the network with data. A frame at time t between the
-// states after step k-1 and k+1 (t_k <= t <= t_k+1) is compared with
-// (1 - alpha) p_k + alpha p_k+1, alpha = (t - t_k) / h_k: the position at the
-// frame's own time, not at the nearest step.
-// A point cloud's frame is compared with the whole cloth at that time by its
-// own loss (frame_loss.h), with the same interpolation.
-struct ObservationPlan {
-  struct Frame {
-    std::size_t step = 0;  // k: the frame lies in step k (states k and k+1)
-    double alpha = 0;
-    std::size_t first = 0, count = 0;  // its observations in nodes / targets (a cloud: its points)
-    int cloud = -1;                    // a frame compared as a whole: clouds[cloud]
-  };
-  std::vector<Frame> frames;        // in time order
-  std::vector<std::int32_t> nodes;  // network nodes
-  std::vector<Vec3> targets;        // measured positions, m
-  std::vector<std::shared_ptr<const FrameLoss>> clouds;
-  std::size_t size() const { return nodes.size(); }  // node observations
-  // Observed 3-vectors: node observations and clouds' points.
-  std::size_t data_count() const;
 };
 
 // dE/d(weight) in the network's order, and dE/d(module parameter) per module
@@ -135,18 +101,5 @@ class Rollout {
   std::vector<std::size_t> frames_of_step_begin_;
   std::unique_ptr<Tape> tape_;
 };
-
-// The part of `plan` and `observations` in steps [first, first + count),
-// renumbered from 0: a window for truncated back-propagation (online fits).
-StepPlan window_of(const StepPlan& plan, std::size_t first, std::size_t count);
-ObservationPlan window_of(const ObservationPlan& observations, std::size_t first,
-                          std::size_t count);
-
-// The plan a scene's solver takes to `duration`: fixed steps as
-// Simulation::advance takes them, or (adaptive) the steps it accepted, run
-// once with the scene's own weights. Throws std::runtime_error when that run
-// diverges or runs out of step budget, or the plan would pass `max_steps`.
-struct Scene;
-StepPlan plan_steps(const Scene& scene, double duration, std::size_t max_steps = kMaxFitSteps);
 
 }  // namespace neurocloth
