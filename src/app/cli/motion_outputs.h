@@ -1,7 +1,7 @@
 #pragma once
 // What `simulate --record FILE` and `--export-pc2 FILE` write: the cloth's
 // positions at every frame time k / fps, in the file's node order, streamed to
-// a recording (src/learn/motion_recording.h) and a PC2 point cache with its
+// a recording (src/learn/motion/motion_recording.h) and a PC2 point cache with its
 // rest mesh (src/learn/pc2_writer.h). Both files appear only when the run has
 // ended and both are complete; a bad option or an unwritable path is refused
 // before the run starts.

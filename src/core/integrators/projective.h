@@ -29,7 +29,7 @@ class ProjectiveIntegrator final : public Integrator {
                   const NodeVectors&, double h, ClothState& out) override;
   int iterations() const { return iterations_; }
 
-  // --- Learning (learn/rollout.h) ---
+  // --- Learning (learn/fit/rollout.h) ---
   // A fit's run is the simulation's: its first steps measure Chebyshev's rate
   // (chebyshev.h) as the simulation's do, and the rest take omegas from it. So
   // each omega moves with the weights through the measured rate, and the

@@ -3,7 +3,7 @@
 // in, on grids whose chunks take every path: a wide grid's rows (neighbours
 // summed in registers) and columns (direct chunks), a narrow grid's columns
 // (chunks stored and accumulated). The fit's gradient as a whole is checked in
-// tests/learn/learn_gradient_test.cpp; this pins a wrong line to the layer.
+// tests/learn/fit/learn_gradient_test.cpp; this pins a wrong line to the layer.
 #include "core/network/spring_adjoint.h"
 
 #include <gtest/gtest.h>
