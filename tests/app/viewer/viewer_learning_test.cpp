@@ -153,7 +153,10 @@ TEST_F(Viewer, AFitToMarkersRunsOnItsWorkerAndItsResultReachesTheCloth) {
   EXPECT_EQ(learning["ghosts"]["count"], 80);
   const json& fit = learning["fit"];
   EXPECT_EQ(fit["state"], "finished") << fit.dump(1);
-  EXPECT_NEAR(fit["values"]["spring_constant"].get<double>(), 300, 3) << fit.dump(1);
+  // Measured 3.23e-8 off 300 with either spring kernel (299.99999996770418
+  // avx512, 299.99999996770367 portable; the same on every run: the session
+  // is in lockstep); bound 4e-8.
+  EXPECT_NEAR(fit["values"]["spring_constant"].get<double>(), 300, 4e-8) << fit.dump(1);
   EXPECT_GE(fit["rows"].get<int>(), 2);
   EXPECT_EQ(learning["applied"]["count"], 1);
   EXPECT_NE(learning["applied"]["last"].get<std::string>().find("spring 30"), std::string::npos)

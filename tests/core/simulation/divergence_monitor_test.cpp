@@ -54,12 +54,13 @@ Simulation without_growth_test(Scene scene) {
 }
 
 // At 0.1 ms (2.9 times its stable step) the cloth rings at its highest mode
-// and levels off: nodes at 28 m/s against the 0.53 m/s of sliding, 0.057 J
+// and levels off: nodes at 28 m/s against the 0.53 m/s of sliding, 0.054 J
 // held where sliding holds 0.0005 J, far below the runaway factor of 1e4
 // budgets (0.0072 J each), so it used to end "ok". Now it diverges, rolled
-// back to the last state that passed: t = 0.1536 s, 0.0084 J held, 15% of the
-// level 0.0545 J at 0.4 s (the ringing had begun: checks are 64 steps apart
-// and the energy grows twelvefold in 64 steps).
+// back to the last state that passed (the ringing had begun: checks are 64
+// steps apart and the energy grows twelvefold in 64 steps). Measured, by
+// spring kernel: avx512 t = 0.1536 s, 0.0084 J held, 0.154 of the level
+// 0.0545 J at 0.4 s; portable t = 0.1984 s, 0.0073 J, 0.137 of 0.0538 J.
 TEST(DivergenceMonitor, ASlowBlowUpInContactIsADivergence) {
   const Scene scene = light_cloth_on(kDmFloor, 1e-4).parse();
   Simulation unchecked = without_growth_test(scene);
@@ -70,9 +71,9 @@ TEST(DivergenceMonitor, ASlowBlowUpInContactIsADivergence) {
   ASSERT_EQ(sim.advance(0.4), RunStatus::diverged);
   EXPECT_TRUE(test::contains(sim.divergence_reason(), "energy grew with no source"))
       << sim.divergence_reason();
-  EXPECT_GT(sim.time(), 0.14);
-  EXPECT_LT(sim.time(), 0.16);
-  EXPECT_LT(held(sim), 0.25 * held(unchecked)) << held(sim) << " J of " << held(unchecked);
+  EXPECT_GT(sim.time(), 0.15);
+  EXPECT_LT(sim.time(), 0.2);
+  EXPECT_LT(held(sim), 0.16 * held(unchecked)) << held(sim) << " J of " << held(unchecked);
 }
 
 // Below the stable step the same cloth slides as Coulomb says, and the check
@@ -90,16 +91,25 @@ TEST(DivergenceMonitor, BelowItsStableStepTheSameClothSlidesAsCoulombSays) {
 // A blow-up made on purpose on each collider: the light cloth at 0.1 ms on
 // a box top, a sphere and a capsule as on the floor. Without the growth test
 // each levels off and ends ok; with it each diverges, keeping a state that
-// holds a fraction of that level (measured at 0.5 s: plane and box 0.146,
-// sphere 0.196, capsule 0.018), and at 2.5e-5 s each runs through.
+// holds a fraction of that level, and at 2.5e-5 s each runs through. The
+// fraction at 0.5 s, measured by spring kernel (avx512, portable): plane
+// 0.146, 0.130; box 0.146, 0.037; sphere 0.196 and capsule 0.018 in both.
+// Each bound is just above the larger.
 TEST(DivergenceMonitor, ABlowUpOnEachColliderIsCaught) {
-  const nlohmann::json colliders[] = {
-      kDmFloor,
-      {{"type", "box"}, {"center", {0.075, -0.5, 0.075}}, {"size", {2.0, 1.0, 2.0}}},
-      {{"type", "sphere"}, {"center", {0.075, -1.0, 0.075}}, {"radius", 1.0}},
-      {{"type", "capsule"}, {"a", {0.075, -1.0, -1.0}}, {"b", {0.075, -1.0, 1.0}}, {"radius", 1.0}},
+  const struct {
+    nlohmann::json collider;
+    double held_at_most;  // of the unchecked run's level
+  } cases[] = {
+      {kDmFloor, 0.15},
+      {{{"type", "box"}, {"center", {0.075, -0.5, 0.075}}, {"size", {2.0, 1.0, 2.0}}}, 0.15},
+      {{{"type", "sphere"}, {"center", {0.075, -1.0, 0.075}}, {"radius", 1.0}}, 0.2},
+      {{{"type", "capsule"},
+        {"a", {0.075, -1.0, -1.0}},
+        {"b", {0.075, -1.0, 1.0}},
+        {"radius", 1.0}},
+       0.02},
   };
-  for (const auto& c : colliders) {
+  for (const auto& [c, held_at_most] : cases) {
     const std::string type = c["type"];
     const Scene scene = light_cloth_on(c, 1e-4).parse();
     Simulation unchecked = without_growth_test(scene);
@@ -108,7 +118,7 @@ TEST(DivergenceMonitor, ABlowUpOnEachColliderIsCaught) {
     EXPECT_EQ(sim.advance(0.5), RunStatus::diverged) << type;
     EXPECT_TRUE(test::contains(sim.divergence_reason(), "energy grew with no source")) << type;
     EXPECT_TRUE(sim.state().all_finite()) << type;
-    EXPECT_LT(held(sim), 0.25 * held(unchecked))
+    EXPECT_LT(held(sim), held_at_most * held(unchecked))
         << type << ": " << held(sim) << " J of " << held(unchecked) << " at t = " << sim.time();
     Simulation stable = light_cloth_on(c, 2.5e-5).parse().make_simulation();
     EXPECT_EQ(stable.advance(0.5), RunStatus::ok) << type << ": " << stable.divergence_reason();

@@ -159,6 +159,27 @@ TEST(CloudSequenceErrors, PatternsThatNameNoFilesAreNamed) {
                      {".ply or .xyz"});
 }
 
+// Each file's time is start + (number - first number) / fps. A rate so high
+// that a later number adds nothing to the start (1 + 1e-300 is 1), or so low
+// that it gives an infinite time, is refused, naming the file whose frame
+// would not come after the one before it, before that file is read.
+TEST(CloudSequenceErrors, AFrameRateThatGivesNoLaterTimeIsNamed) {
+  const fs::path dir = scratch_dir() / "scans";
+  write(dir / "frame_1.xyz", xyz_frame(1));
+  write(dir / "frame_2.xyz", "not read: refused before its points\n");
+  const std::string second = (dir / "frame_2.xyz").string();
+  expect_input_error([&] { read_cloud_sequence(dir.string(), at_fps(1e300, 1)); }, second, 0,
+                     "--reference-fps", {"frame number 2 at", "no later time"});
+  expect_input_error([&] { read_cloud_sequence(dir.string(), at_fps(1e-310)); }, second, 0,
+                     "--reference-fps", {"frame number 2 at", "no later time"});
+  // The same files at a rate that separates them are read (the second file
+  // made readable), so it is the rate the error is about.
+  write(dir / "frame_2.xyz", xyz_frame(2));
+  const ReferenceMotion m = read_cloud_sequence(dir.string(), at_fps(1e6, 1));
+  ASSERT_EQ(m.frames.size(), 2u);
+  EXPECT_GT(m.frames[1].time, m.frames[0].time);
+}
+
 // A bad file is named by its own error: the file, the line, the field.
 TEST(CloudSequenceErrors, ABadFileIsNamedByItsOwnError) {
   const fs::path dir = scratch_dir() / "scans";

@@ -1,10 +1,12 @@
 // The global first stage (global_search.h): a separable CMA-ES over a box,
 // by values alone. On a landscape of many valleys it finds the deepest where
 // a descent from the start stops in the nearest; it stays in its box, keeps
-// to its budget, ranks NaN last, and repeats itself for a seed.
+// to its budget, ranks NaN last, repeats itself for a seed and samples
+// elsewhere for another, and returns no start when no run gave a finite loss.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "learn/optim/global_search.h"
 #include "learn/optim/optimizer.h"
@@ -99,14 +101,86 @@ TEST(GlobalSearch, RanksANaNLastAndStopsWhenAsked) {
   EXPECT_EQ(calls, 10);
 }
 
-TEST(GlobalSearch, TheSameSeedTheSameSearch) {
+// Every point a search evaluated, in order, and what it returned.
+struct SearchRun {
+  std::vector<Eigen::VectorXd> evaluated;
+  GlobalSearchResult result;
+};
+SearchRun search_with_seed(unsigned seed) {
+  SearchRun run;
   GlobalSearchOptions g;
   g.evaluations = 80;
-  const auto a = global_search(valleys, Eigen::Vector2d(2, 2), Eigen::Vector2d(3, 3), g);
-  const auto b = global_search(valleys, Eigen::Vector2d(2, 2), Eigen::Vector2d(3, 3), g);
-  ASSERT_EQ(a.best.size(), b.best.size());
-  for (std::size_t i = 0; i < a.best.size(); ++i)
-    EXPECT_EQ(a.best[i], b.best[i]);
+  g.seed = seed;
+  run.result = global_search(
+      [&](const Eigen::VectorXd& x) {
+        run.evaluated.push_back(x);
+        return valleys(x);
+      },
+      Eigen::Vector2d(2, 2), Eigen::Vector2d(3, 3), g);
+  return run;
+}
+
+// The seed alone chooses the samples: the same seed evaluates the same points
+// in the same order and returns the same starts, bit for bit; another seed
+// samples elsewhere from its first generation on (only the start, evaluated
+// first, is shared) and returns other starts.
+TEST(GlobalSearch, TheSameSeedTheSameSearchAnotherSeedAnother) {
+  const SearchRun a = search_with_seed(1), b = search_with_seed(1), c = search_with_seed(2);
+  ASSERT_EQ(a.evaluated.size(), b.evaluated.size());
+  for (std::size_t i = 0; i < a.evaluated.size(); ++i)
+    EXPECT_EQ(a.evaluated[i], b.evaluated[i]) << i;
+  ASSERT_EQ(a.result.best.size(), b.result.best.size());
+  ASSERT_FALSE(a.result.best.empty());
+  for (std::size_t i = 0; i < a.result.best.size(); ++i) {
+    EXPECT_EQ(a.result.best[i], b.result.best[i]) << i;
+    EXPECT_EQ(a.result.losses[i], b.result.losses[i]) << i;
+  }
+
+  ASSERT_GE(c.evaluated.size(), 2u);
+  EXPECT_EQ(c.evaluated[0], a.evaluated[0]);  // the start
+  EXPECT_EQ(c.evaluated[0], Eigen::Vector2d(2, 2));
+  EXPECT_NE(c.evaluated[1], a.evaluated[1]);
+  ASSERT_FALSE(c.result.best.empty());
+  EXPECT_NE(c.result.best.front(), a.result.best.front());
+  // None of the other seed's starts is one of the first's.
+  for (const Eigen::VectorXd& other : c.result.best)
+    for (const Eigen::VectorXd& first : a.result.best)
+      EXPECT_NE(other, first);
+}
+
+// Nothing to return: a search stopped before its first run, or one whose
+// every run diverged (a NaN or infinite loss is no start for a descent),
+// returns no points and no losses, and counts what it ran.
+TEST(GlobalSearch, ReturnsNoStartsWhenNoRunGaveAFiniteLoss) {
+  GlobalSearchOptions g;
+  g.evaluations = 40;
+  int calls = 0;
+  const GlobalSearchResult diverged = global_search(
+      [&](const Eigen::VectorXd&) {
+        ++calls;
+        return (calls % 2) ? std::nan("") : HUGE_VAL;
+      },
+      Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), g);
+  EXPECT_TRUE(diverged.best.empty());
+  EXPECT_TRUE(diverged.losses.empty());
+  EXPECT_EQ(diverged.evaluations, calls);
+  EXPECT_GT(diverged.evaluations, 1);
+  EXPECT_GT(diverged.generations, 0);
+
+  g.should_stop = [] { return true; };
+  calls = 0;
+  const GlobalSearchResult stopped = global_search(
+      [&](const Eigen::VectorXd& x) {
+        ++calls;
+        return valleys(x);
+      },
+      Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), g);
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(stopped.evaluations, 0);
+  EXPECT_EQ(stopped.generations, 0);
+  EXPECT_TRUE(stopped.best.empty());
+  EXPECT_TRUE(stopped.losses.empty());
+  EXPECT_NE(stopped.message.find("0 runs"), std::string::npos) << stopped.message;
 }
 
 TEST(GlobalSearch, RefusesAZeroWidthOrBudget) {

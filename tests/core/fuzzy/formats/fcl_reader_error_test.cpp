@@ -2,9 +2,11 @@
 // line and the column, and says what is wrong (docs/fcl.md).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <ostream>
 #include <string>
 
+#include "core/fuzzy/membership_function.h"
 #include "support/fcl_test_text.h"
 
 namespace neurocloth::fuzzy {
@@ -256,6 +258,25 @@ TEST(FclReader, MissingEndAtEndOfFileNamesTheOpenBlock) {
     expect_error(text, c.field, c.block, c.message);
   }
   expect_error("", "FUNCTION_BLOCK", "", "expected FUNCTION_BLOCK, got end of file");
+}
+
+// A point list is read whole, then held to kMaxPoints (10000) points: the
+// most is read, one more is refused, naming the term.
+TEST(FclReader, APointListOfMoreThanTheMostPointsIsRefused) {
+  auto with_points = [](std::size_t n) {
+    std::string list;
+    for (std::size_t i = 0; i < n; ++i) {
+      char point[48];
+      std::snprintf(point, sizeof point, "(%.17g, %d) ", 2.0 * double(i) / double(n), int(i % 2));
+      list += point;
+    }
+    return edited({{"trian 0 0 1;", list + ";"}});
+  };
+  const FuzzySystem most = parse_fcl(with_points(kMaxPoints), kPath);
+  EXPECT_EQ(most.inputs[0].terms[0].function.shape, Shape::points);
+  EXPECT_EQ(most.inputs[0].terms[0].function.params.size(), 2 * kMaxPoints);
+  expect_error(with_points(kMaxPoints + 1), "TERM light",
+               "light :=", "a point list holds at most 10000 points, got 10001");
 }
 
 }  // namespace
