@@ -82,7 +82,7 @@ const char* kind_name(CloudFileKind kind) {
 // Gathers the files of a sequence, checking them as they come.
 class FrameFiles {
  public:
-  explicit FrameFiles(const std::string& path) : path_(path) {}
+  FrameFiles(const std::string& path, std::size_t most) : path_(path), most_(most) {}
 
   void add(const std::string& file, const std::string& digits, CloudFileKind kind) {
     if (digits.size() > kMaxNumberDigits)
@@ -96,10 +96,10 @@ class FrameFiles {
                            ", '" + file + "' is " + kind_name(kind) +
                            " (a sequence is of one kind)");
     }
-    if (files_.size() == kMaxReferenceFrames)
-      throw InputError(path_, "",
-                       "more than " + std::to_string(kMaxReferenceFrames) +
-                           " files: more frames than a reference may hold");
+    if (files_.size() == most_)
+      throw InputError(
+          path_, "",
+          "more than " + std::to_string(most_) + " files: more frames than a reference may hold");
     files_.push_back({file, number_of(digits)});
   }
 
@@ -118,6 +118,7 @@ class FrameFiles {
 
  private:
   const std::string& path_;
+  std::size_t most_;
   std::vector<FrameFile> files_;
   CloudFileKind kind_ = CloudFileKind::none;
   std::string first_of_kind_;
@@ -134,8 +135,8 @@ std::vector<std::string> file_names(const fs::path& folder, const std::string& p
   return names;
 }
 
-std::vector<FrameFile> folder_files(const std::string& path) {
-  FrameFiles files(path);
+std::vector<FrameFile> folder_files(const std::string& path, const ReferenceLimits& limits) {
+  FrameFiles files(path, limits.frames);
   std::vector<std::string> names = file_names(path, path);
   std::sort(names.begin(), names.end());  // the same messages whatever the folder's order
   for (const std::string& name : names) {
@@ -152,7 +153,7 @@ std::vector<FrameFile> folder_files(const std::string& path) {
   return files.sorted("no PLY or XYZ file in the folder (.ply or .xyz, any case)");
 }
 
-std::vector<FrameFile> pattern_files(const std::string& path) {
+std::vector<FrameFile> pattern_files(const std::string& path, const ReferenceLimits& limits) {
   const fs::path folder = fs::path(path).parent_path();
   const std::string pattern = fs::path(path).filename().string();
   const NumberPlace place = number_place(pattern);
@@ -162,7 +163,7 @@ std::vector<FrameFile> pattern_files(const std::string& path) {
   const CloudFileKind kind = cloud_file_kind(pattern);
   if (kind == CloudFileKind::none)
     throw InputError(path, "", "a frame pattern must end in .ply or .xyz");
-  FrameFiles files(path);
+  FrameFiles files(path, limits.frames);
   std::vector<std::string> names = file_names(folder, path);
   std::sort(names.begin(), names.end());
   for (const std::string& name : names) {
@@ -189,22 +190,23 @@ CloudFileKind cloud_file_kind(const std::string& path) {
 }
 
 std::vector<Vec3> parse_cloud_points(const std::string& bytes, const std::string& path,
-                                     CloudFileKind kind) {
-  return kind == CloudFileKind::ply ? parse_ply_points(bytes, path) : parse_xyz_points(bytes, path);
+                                     CloudFileKind kind, const ReferenceLimits& limits) {
+  return kind == CloudFileKind::ply ? parse_ply_points(bytes, path)
+                                    : parse_xyz_points(bytes, path, limits);
 }
 
 bool is_frame_pattern(const std::string& path) {
   return number_place(fs::path(path).filename().string()).begin != std::string::npos;
 }
 
-std::vector<FrameFile> list_frame_files(const std::string& path) {
-  return is_frame_pattern(path) ? pattern_files(path) : folder_files(path);
+std::vector<FrameFile> list_frame_files(const std::string& path, const ReferenceLimits& limits) {
+  return is_frame_pattern(path) ? pattern_files(path, limits) : folder_files(path, limits);
 }
 
 ReferenceMotion read_cloud_sequence(const std::string& path, const ReferenceOptions& options) {
   const double fps = required_fps(options, path, "a sequence of point cloud files holds no times");
   const double start = checked_start(options, path);
-  const std::vector<FrameFile> files = list_frame_files(path);
+  const std::vector<FrameFile> files = list_frame_files(path, options.limits);
   ReferenceMotion motion;
   motion.path = path;
   motion.source = ReferenceMotion::Source::cloud;
@@ -221,11 +223,11 @@ ReferenceMotion read_cloud_sequence(const std::string& path, const ReferenceOpti
                            " frames per second gives no later time than the frame before it");
     frame.positions =
         parse_cloud_points(read_text_file(file.path, "point cloud file", kMaxReferenceBytes),
-                           file.path, cloud_file_kind(file.path));
+                           file.path, cloud_file_kind(file.path), options.limits);
     points += frame.positions.size();
-    if (points > kMaxReferenceObservations)
+    if (points > options.limits.observations)
       throw InputError(file.path, "",
-                       "the sequence passes " + std::to_string(kMaxReferenceObservations) +
+                       "the sequence passes " + std::to_string(options.limits.observations) +
                            " points in this file: more than a reference may hold");
     motion.frames.push_back(std::move(frame));
   }
@@ -238,8 +240,9 @@ ReferenceMotion read_cloud_file(const std::string& path, const ReferenceOptions&
   motion.source = ReferenceMotion::Source::cloud;
   motion.frames.resize(1);
   motion.frames[0].time = checked_start(options, path);
-  motion.frames[0].positions = parse_cloud_points(
-      read_text_file(path, "point cloud file", kMaxReferenceBytes), path, cloud_file_kind(path));
+  motion.frames[0].positions =
+      parse_cloud_points(read_text_file(path, "point cloud file", kMaxReferenceBytes), path,
+                         cloud_file_kind(path), options.limits);
   return motion;
 }
 

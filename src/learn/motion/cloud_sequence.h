@@ -23,9 +23,10 @@ enum class CloudFileKind { none, ply, xyz };
 CloudFileKind cloud_file_kind(const std::string& path);
 
 // The points of one PLY or XYZ file already in memory (parse_ply_points or
-// parse_xyz_points). Throws InputError naming `path`.
+// parse_xyz_points). Throws InputError naming `path`. A PLY's count is held
+// to kMaxReferenceObservations by its header's reader.
 std::vector<Vec3> parse_cloud_points(const std::string& bytes, const std::string& path,
-                                     CloudFileKind kind);
+                                     CloudFileKind kind, const ReferenceLimits& limits = {});
 
 // True when the file name in `path` holds a frame number's place: %d or %0Nd
 // (N from 1 to 9), as printf writes it.
@@ -40,13 +41,14 @@ struct FrameFile {
 // sorted by their numbers; all of one kind. Throws InputError naming `path`
 // (and the files at fault) when none is a PLY or XYZ file, kinds are mixed,
 // a file has no number, two share one, or there are more than
-// kMaxReferenceFrames.
-std::vector<FrameFile> list_frame_files(const std::string& path);
+// limits.frames.
+std::vector<FrameFile> list_frame_files(const std::string& path,
+                                        const ReferenceLimits& limits = {});
 
 // A folder or a pattern: one frame per file (Source::cloud). Needs
 // options.fps (InputError "--reference-fps"). Each file is at most
-// kMaxReferenceBytes, all of them together at most kMaxReferenceObservations
-// points. Throws InputError naming the file at fault.
+// kMaxReferenceBytes, all of them together at most options.limits.observations
+// points, in at most options.limits.frames files. Throws InputError naming the file at fault.
 ReferenceMotion read_cloud_sequence(const std::string& path, const ReferenceOptions& options);
 
 // One PLY or XYZ file: a cloud of one frame at options.start.

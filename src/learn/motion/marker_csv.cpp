@@ -35,8 +35,8 @@ bool same_columns(const std::vector<std::string_view>& fields, const char* const
 // (none does: a depth camera or a scanner sees the surface, not the nodes).
 class MarkerReader {
  public:
-  MarkerReader(const std::string& path, std::size_t node_count)
-      : path_(path), node_count_(node_count), seen_in_frame_(node_count, 0) {
+  MarkerReader(const std::string& path, std::size_t node_count, const ReferenceLimits& limits)
+      : path_(path), node_count_(node_count), limits_(limits), seen_in_frame_(node_count, 0) {
     motion_.path = path;
     motion_.source = ReferenceMotion::Source::markers;
   }
@@ -80,18 +80,18 @@ class MarkerReader {
                              std::to_string(motion_.frames.back().time) +
                              " s (frames must come in increasing time, a frame's rows together)",
                          line_);
-      if (motion_.frames.size() == kMaxReferenceFrames)
+      if (motion_.frames.size() == limits_.frames)
         throw InputError(path_, "time",
-                         "more than " + std::to_string(kMaxReferenceFrames) +
+                         "more than " + std::to_string(limits_.frames) +
                              " frames (distinct times): more than a reference may hold",
                          line_);
       motion_.frames.emplace_back();
       motion_.frames.back().time = time;
     }
     ReferenceFrame& frame = motion_.frames.back();
-    if (++observations_ > kMaxReferenceObservations)
+    if (++observations_ > limits_.observations)
       throw InputError(path_, "",
-                       "more than " + std::to_string(kMaxReferenceObservations) +
+                       "more than " + std::to_string(limits_.observations) +
                            (cloud_ ? " points" : " observations") +
                            ": more than a reference may hold",
                        line_);
@@ -149,6 +149,7 @@ class MarkerReader {
 
   const std::string& path_;
   std::size_t node_count_;
+  ReferenceLimits limits_;
   ReferenceMotion motion_;
   std::vector<std::size_t> seen_in_frame_;
   std::size_t observations_ = 0;
@@ -161,9 +162,9 @@ class MarkerReader {
 }  // namespace
 
 ReferenceMotion parse_marker_csv(const std::string& text, const std::string& path,
-                                 std::size_t node_count) {
+                                 std::size_t node_count, const ReferenceLimits& limits) {
   if (node_count == 0) throw InputError(path, "", "the scene has no nodes to observe");
-  MarkerReader reader(path, node_count);
+  MarkerReader reader(path, node_count, limits);
   const int line_number = walk_csv_lines(
       text, path,
       "empty: expected the CSV header 'time,node,x,y,z' (markers), 'time,x,y,z' (a point cloud) "

@@ -31,6 +31,6 @@ namespace neurocloth {
 // Markers (Source::markers) or a cloud (Source::cloud, frames without nodes).
 // Throws InputError naming `path`, the line and the field on bad input.
 ReferenceMotion parse_marker_csv(const std::string& text, const std::string& path,
-                                 std::size_t node_count);
+                                 std::size_t node_count, const ReferenceLimits& limits = {});
 
 }  // namespace neurocloth

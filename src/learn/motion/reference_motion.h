@@ -44,29 +44,6 @@ struct ReferenceMotion {
 
 const char* to_string(ReferenceMotion::Source source);
 
-// What the file alone does not say: the command line's --reference-* options.
-struct ReferenceOptions {
-  // Frames per second of a frame sequence (PLY / XYZ files) or of a PC2
-  // cache (which stores none); 0 when not given. An MDD stores its times.
-  double fps = 0;
-  // The time of the sequence's or cache's first frame, s from the scene's start.
-  double start = 0;
-  // The OBJ mesh a PC2 / MDD cache deforms (its vertex k is the cache's k).
-  std::string mesh;
-  // The scene's initial node positions in file order: a cache's mesh is
-  // matched against them (vertex order first). Empty: not checked.
-  std::vector<Vec3> scene_positions;
-};
-
-// options.fps for a file that needs it (a frame sequence, a PC2 cache):
-// finite and > 0, else InputError naming `path` and field "--reference-fps",
-// `why` saying what the file lacks.
-double required_fps(const ReferenceOptions& options, const std::string& path,
-                    const std::string& why);
-// options.start, finite and >= 0, else InputError naming `path` and field
-// "--reference-start".
-double checked_start(const ReferenceOptions& options, const std::string& path);
-
 // Limits on what a reference file may hold: far above a real capture (2^25
 // node positions is 4096 nodes for 136 s at 60 frames per second), far below
 // what would exhaust memory. Checked before anything is allocated from a count
@@ -80,6 +57,39 @@ inline constexpr std::size_t kMaxReferenceFrames = std::size_t(1) << 20;
 // A coordinate beyond 1000 km of the origin is a unit mistake (mm read as m
 // a million times over), and its square would overflow the fit's sums.
 inline constexpr double kMaxReferenceCoordinate = 1e6;  // m
+
+// The limits a reader holds a reference to: the constants above. Readers take
+// them as a value so that a test reaches a limit with a few points rather
+// than 2^25; nothing else passes other ones.
+struct ReferenceLimits {
+  std::size_t observations = kMaxReferenceObservations;
+  std::size_t frames = kMaxReferenceFrames;
+};
+
+// What the file alone does not say: the command line's --reference-* options.
+struct ReferenceOptions {
+  // Frames per second of a frame sequence (PLY / XYZ files) or of a PC2
+  // cache (which stores none); 0 when not given. An MDD stores its times.
+  double fps = 0;
+  // The time of the sequence's or cache's first frame, s from the scene's start.
+  double start = 0;
+  // The OBJ mesh a PC2 / MDD cache deforms (its vertex k is the cache's k).
+  std::string mesh;
+  // The scene's initial node positions in file order: a cache's mesh is
+  // matched against them (vertex order first). Empty: not checked.
+  std::vector<Vec3> scene_positions;
+  // What a frame sequence may hold (the defaults above).
+  ReferenceLimits limits;
+};
+
+// options.fps for a file that needs it (a frame sequence, a PC2 cache):
+// finite and > 0, else InputError naming `path` and field "--reference-fps",
+// `why` saying what the file lacks.
+double required_fps(const ReferenceOptions& options, const std::string& path,
+                    const std::string& why);
+// options.start, finite and >= 0, else InputError naming `path` and field
+// "--reference-start".
+double checked_start(const ReferenceOptions& options, const std::string& path);
 
 // True when every coordinate of `p` is finite and within kMaxReferenceCoordinate.
 bool reference_position_ok(const Vec3& p);

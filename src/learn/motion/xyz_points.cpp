@@ -29,7 +29,8 @@ int first_three(std::string_view line, std::string_view (&values)[3]) {
 
 }  // namespace
 
-std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& path) {
+std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& path,
+                                   const ReferenceLimits& limits) {
   std::vector<Vec3> points;
   const int last_line = walk_text_lines(text, path, [&](std::string_view line, int line_number) {
     std::string_view values[3];
@@ -50,9 +51,9 @@ std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& p
             line_number);
       xyz[axis] = v.value;
     }
-    if (points.size() == kMaxReferenceObservations)
+    if (points.size() == limits.observations)
       throw InputError(path, "",
-                       "more than " + std::to_string(kMaxReferenceObservations) +
+                       "more than " + std::to_string(limits.observations) +
                            " points: more than a reference may hold",
                        line_number);
     points.emplace_back(xyz[0], xyz[1], xyz[2]);

@@ -14,12 +14,14 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
 
 // The points in file order (at least one, each finite and within
 // kMaxReferenceCoordinate, at most kMaxReferenceObservations). Throws
 // InputError naming `path`, the line and the field (x, y or z).
-std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& path);
+std::vector<Vec3> parse_xyz_points(const std::string& text, const std::string& path,
+                                   const ReferenceLimits& limits = {});
 
 }  // namespace neurocloth

@@ -180,6 +180,36 @@ TEST(CloudSequenceErrors, AFrameRateThatGivesNoLaterTimeIsNamed) {
   EXPECT_GT(m.frames[1].time, m.frames[0].time);
 }
 
+// More files than a reference may hold frames, or more points in all than it
+// may hold, are refused: the files before any is read, the points at the file
+// that passes the limit. The limits (2^20 frames, 2^25 points:
+// reference_motion.h) are held here to 2 files and 5 points.
+TEST(CloudSequenceErrors, MoreFilesOrPointsThanAReferenceMayHoldAreRefused) {
+  const fs::path dir = scratch_dir() / "scans";
+  for (int n : {1, 2, 3})
+    write(dir / ("frame_" + std::to_string(n) + ".xyz"), xyz_frame(n));  // 2 points each
+  ReferenceOptions two_files = at_fps(30);
+  two_files.limits.frames = 2;
+  expect_input_error([&] { read_cloud_sequence(dir.string(), two_files); }, dir.string(), 0, "",
+                     {"more than 2 files"});
+  const std::string pattern = (dir / "frame_%d.xyz").string();
+  expect_input_error([&] { read_cloud_sequence(pattern, two_files); }, pattern, 0, "",
+                     {"more than 2 files"});
+  two_files.limits.frames = 3;
+  EXPECT_EQ(read_cloud_sequence(dir.string(), two_files).frames.size(), 3u);
+  ReferenceOptions five_points = at_fps(30);
+  five_points.limits.observations = 5;
+  expect_input_error([&] { read_cloud_sequence(dir.string(), five_points); },
+                     (dir / "frame_3.xyz").string(), 0, "", {"passes 5 points"});
+  five_points.limits.observations = 6;
+  EXPECT_EQ(read_cloud_sequence(dir.string(), five_points).observations(), 6u);
+  // One file past the limit alone: its own reader refuses it at the point too many.
+  ReferenceOptions one_point = at_fps(30);
+  one_point.limits.observations = 1;
+  expect_input_error([&] { read_cloud_file((dir / "frame_1.xyz").string(), one_point); },
+                     (dir / "frame_1.xyz").string(), 2, "", {"more than 1 points"});
+}
+
 // A bad file is named by its own error: the file, the line, the field.
 TEST(CloudSequenceErrors, ABadFileIsNamedByItsOwnError) {
   const fs::path dir = scratch_dir() / "scans";

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include "learn/motion/read_reference.h"
+#include "support/input_error_check.h"
 #include "support/reference_error.h"
 
 namespace neurocloth {
 namespace {
+using test::expect_input_error;
 using test::expect_reference_error;
 
 constexpr std::size_t kNodes = 10;
@@ -168,6 +170,25 @@ TEST(MarkerCsvErrors, MoreFramesThanAReferenceMayHoldAreRefused) {
     text += std::to_string(k) + ",0,0,0,0\n";
   expect_reference_error(text, kNodes, static_cast<int>(kMaxReferenceFrames) + 2, "time",
                          "1048576 frames");
+}
+
+// More observations (markers) or points (a cloud) than a reference may hold
+// are refused at the row of the first one too many. The limit is 2^25
+// (reference_motion.h), held here to 4 through the reader's limits.
+TEST(MarkerCsvErrors, MoreObservationsThanAReferenceMayHoldAreRefused) {
+  EXPECT_EQ(ReferenceLimits().observations, kMaxReferenceObservations);
+  EXPECT_EQ(ReferenceLimits().frames, kMaxReferenceFrames);
+  ReferenceLimits four;
+  four.observations = 4;
+  const std::string markers = kHeader + "0,0,0,0,0\n0,1,0,0,0\n0.1,0,0,0,0\n0.1,1,0,0,0\n";
+  EXPECT_EQ(parse_marker_csv(markers, "markers.csv", kNodes, four).observations(), 4u);
+  expect_input_error(
+      [&] { parse_marker_csv(markers + "0.2,0,0,0,0\n", "markers.csv", kNodes, four); },
+      "markers.csv", 6, "", {"more than 4 observations"});
+  const std::string cloud = "time,x,y,z\n0,1,2,3\n0,1,2,3\n0.1,1,2,3\n0.1,4,5,6\n";
+  EXPECT_EQ(parse_marker_csv(cloud, "cloud.csv", kNodes, four).observations(), 4u);
+  expect_input_error([&] { parse_marker_csv(cloud + "0.1,7,8,9\n", "cloud.csv", kNodes, four); },
+                     "cloud.csv", 6, "", {"more than 4 points"});
 }
 
 // A binary file or a stray byte quoted in a message: a carriage return, a NUL

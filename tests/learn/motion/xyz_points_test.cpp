@@ -49,6 +49,20 @@ TEST(XyzPointsErrors, BadLinesAreNamedByLineAndField) {
   expect_xyz_error("X Y Z\n1 2 3\n", 1, "x", {"not a number: 'X'"});
 }
 
+// A file of more points than a reference may hold is refused at the line of
+// the first point too many. The limit is 2^25 (reference_motion.h); the test
+// holds the reader to 3, through the limits every reader takes, and checks
+// that the readers' default is that constant.
+TEST(XyzPointsErrors, MorePointsThanAReferenceMayHoldAreRefused) {
+  EXPECT_EQ(ReferenceLimits().observations, kMaxReferenceObservations);
+  ReferenceLimits three;
+  three.observations = 3;
+  const std::string text = "1 2 3\n# c\n4 5 6\n7 8 9\n";
+  EXPECT_EQ(parse_xyz_points(text, "scan.xyz", three).size(), 3u);
+  expect_input_error([&] { parse_xyz_points(text + "0 0 0\n", "scan.xyz", three); }, "scan.xyz", 5,
+                     "", {"more than 3 points"});
+}
+
 TEST(XyzPointsErrors, NoPointsIsRefused) {
   expect_xyz_error("", 0, "", {"no points"});
   expect_xyz_error("# only\n\n", 2, "", {"no points"});
