@@ -42,6 +42,7 @@ void FitProblem::Impl::build_model() {
   base.net = scene.build_network();
   base.integrator = s.integrator;
   base.iterations = s.iterations;
+  base.kernel = s.kernel;
   // The scene's modules in the order Scene::make_simulation runs them, and
   // which declaration each one came from.
   std::vector<std::pair<int, std::shared_ptr<const ConstraintModule>>> constraints;

@@ -156,6 +156,7 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   const std::size_t n = m.net.node_count();
   if (initial_.size() != n) throw std::invalid_argument("rollout: state and model differ in size");
   prepare_integrator(m);
+  t.inputs.kernel = m.kernel;
   if (t.forces.size() != n) {
     t.forces.resize(n);
     t.adj_force.resize(n);

@@ -16,6 +16,7 @@
 #include "core/integrators/integrator.h"
 #include "core/network/cloth_network.h"
 #include "core/network/spring_adjoint.h"
+#include "core/network/spring_kernel.h"
 #include "learn/fit/frame_loss.h"
 #include "learn/fit/observation_plan.h"
 #include "learn/fit/step_plan.h"
@@ -32,6 +33,10 @@ struct RolloutModel {
   // with its iterations (projective.h: a fixed count, read backwards exactly).
   IntegratorKind integrator = IntegratorKind::network;
   int iterations = kDefaultProjectiveIterations;
+  // The code that evaluates the springs' forces and their adjoint
+  // (SolverSettings::kernel): the scene's own, so that a fit runs the steps
+  // its plan was measured on, to the same last bits.
+  SpringKernel kernel = SpringKernel::automatic;
 };
 
 // dE/d(weight) in the network's order, and dE/d(module parameter) per module

@@ -10,6 +10,7 @@
 
 #include "learn/fit/fit_problem.h"
 #include "learn/fit/rollout.h"
+#include "support/by_kernel.h"
 #include "support/gradient_check.h"
 #include "support/scene_builder.h"
 
@@ -182,15 +183,24 @@ TEST(LearnGradient, TheInputsOfALightClothSlidingBelowItsStableStep) {
   expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
 }
 
-TEST(LearnGradient, AFitRefusesARunThatDiverges) {
-  const Scene scene = light_sliding_drop(1e-4).parse();
+// At 0.1 ms the ringing begins about 0.15 s in, and when the growth test
+// (checked every 64 steps) strikes depends on the kernel's last bits: a like
+// cloth on a floor rolls back at 0.154 s with avx512 and at 0.198 s with the
+// portable kernel (DivergenceMonitor.ASlowBlowUpInContactIsADivergence), and
+// this scene's portable run passed a reference of 0.2 s. A reference of
+// 0.3 s is refused with both.
+class LearnGradientByKernel : public test::ByKernel {};
+INSTANTIATE_BY_KERNEL(LearnGradientByKernel);
+
+TEST_P(LearnGradientByKernel, AFitRefusesARunThatDiverges) {
+  const Scene scene = with_kernel(light_sliding_drop(1e-4).parse());
   FitSettings s;
   s.params = {"input.mass"};
   try {
-    FitProblem p(scene, scattered_reference(scene, 0.2, 4), s);
+    FitProblem p(scene, scattered_reference(scene, 0.3, 4), s);
     ADD_FAILURE() << "a fit was set up on a run that diverges";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("the scene's own run diverged before 0.2 s"),
+    EXPECT_NE(std::string(e.what()).find("the scene's own run diverged before 0.3 s"),
               std::string::npos)
         << e.what();
   }

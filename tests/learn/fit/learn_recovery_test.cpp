@@ -14,6 +14,7 @@
 #include "learn/fit/input_starts.h"
 #include "learn/optim/global_search.h"
 #include "learn/optim/optimizer.h"
+#include "support/by_kernel.h"
 #include "support/recorded_reference.h"
 #include "support/sampled_cloud.h"
 #include "support/scene_builder.h"
@@ -151,14 +152,20 @@ TEST(LearnRecovery, TheWordsOfACloth) {
   }
 }
 
+// The fits below stop on a budget or on a loss whose last bits decide where:
+// each is run with each spring kernel this CPU has, against the figures
+// measured with that kernel (support/by_kernel.h).
+class LearnRecoveryByKernel : public test::ByKernel {};
+INSTANTIATE_BY_KERNEL(LearnRecoveryByKernel);
+
 // The vertical structural springs between rows 3 and 5 of a cloth hanging
 // from its top row (the ones that carry its weight there) are four times
 // stiffer than the rest; a per-element fit from uniform weights finds them.
-TEST(LearnRecovery, PerElementFitFindsAPlantedStiffBand) {
+TEST_P(LearnRecoveryByKernel, PerElementFitFindsAPlantedStiffBand) {
   const double k = 60.0;
   SceneBuilder b = hanging_cloth(k, 0.05);
   b.pin_top_row();
-  const Scene uniform = b.parse();
+  const Scene uniform = with_kernel(b.parse());
   ClothNetwork planted = uniform.build_network();
   const int cols = 9;
   auto in_band = [&](std::size_t s) {
@@ -195,16 +202,20 @@ TEST(LearnRecovery, PerElementFitFindsAPlantedStiffBand) {
               4 * k, median_out, k);
   std::printf("  band %.5g to %.5g N/m, elsewhere %.5g to %.5g\n", in.front(), in.back(),
               out.front(), out.back());
-  // Measured: medians off by 3.5e-4 and 1.1e-5; each band spring within
-  // 7.9e-4 of its planted value (239.81 to 239.99 N/m), each other spring
-  // within 1.9e-2 (59.72 to 61.14 N/m); 300 iterations, loss 7.9e-8. (Before
-  // the AVX-512 adjoint, whose last bits differ: 4.0e-4, 1.1e-4, 1.7e-3, 2.2e-2.)
-  EXPECT_LT(recovery_error(median_in, 4 * k), 5e-4);
-  EXPECT_LT(recovery_error(median_out, k), 1.5e-4);
-  for (double v : {in.front(), in.back()})
-    EXPECT_LT(recovery_error(v, 4 * k), 2e-3) << v;
-  for (double v : {out.front(), out.back()})
-    EXPECT_LT(recovery_error(v, k), 2.5e-2) << v;
+  const double band_median = recovery_error(median_in, 4 * k),
+               rest_median = recovery_error(median_out, k);
+  const double band_worst =
+      std::max(recovery_error(in.front(), 4 * k), recovery_error(in.back(), 4 * k));
+  const double rest_worst = std::max(recovery_error(out.front(), k), recovery_error(out.back(), k));
+  std::printf("  off: band median %.3g, rest median %.3g, band worst %.3g, rest worst %.3g\n",
+              band_median, rest_median, band_worst, rest_worst);
+  // 300 iterations (the budget), loss 7.9e-8. Measured (band median, rest
+  // median, band worst, rest worst), avx512: 4.91e-4, 4.57e-5, 1.10e-3,
+  // 1.94e-2; portable: 6.78e-4, 9.44e-5, 1.27e-3, 1.67e-2.
+  EXPECT_LT(band_median, avx512() ? 5.5e-4 : 7.5e-4);
+  EXPECT_LT(rest_median, avx512() ? 5.5e-5 : 1.1e-4);
+  EXPECT_LT(band_worst, avx512() ? 1.3e-3 : 1.5e-3);
+  EXPECT_LT(rest_worst, avx512() ? 2.2e-2 : 1.9e-2);
   // Every band spring stands out from every other spring.
   EXPECT_GT(in.front(), out.back());
 }
@@ -421,14 +432,15 @@ TEST(LearnRecovery, AGlobalStageFindsTheWordsFromAPlateau) {
 // descents from its best, come within 4.9 mm. Not to rounding: on a loss this
 // rough where the search lands decides how near the descent gets (a throw
 // 0.1% smaller, keys times 3.33, came within 0.03 mm).
-TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
+TEST_P(LearnRecoveryByKernel, AHardThrowFromAGlobalStage) {
   const double a = 10.0 / 3;
   const std::vector<Vec3> keys = {a * Vec3(0.015, 0.03, 0.006), a * Vec3(0.036, 0.045, -0.009),
                                   a * Vec3(0.03, 0.015, 0.024)};
   const Vec3 v0 = a * Vec3(0.12, 0.36, -0.09);
-  const Scene truth = thrown_cloth(keys, v0).parse();
+  const Scene truth = with_kernel(thrown_cloth(keys, v0).parse());
   const ReferenceMotion ref = record(truth, 0.35, 10);
-  const Scene start = thrown_cloth(std::vector<Vec3>(3, Vec3::Zero()), Vec3::Zero()).parse();
+  const Scene start =
+      with_kernel(thrown_cloth(std::vector<Vec3>(3, Vec3::Zero()), Vec3::Zero()).parse());
   FitSettings s;
   s.params = {"pin_motion.keyframes", "initial_velocity"};
   FitProblem problem(start, ref, s);
@@ -447,18 +459,14 @@ TEST(LearnRecovery, AHardThrowFromAGlobalStage) {
   std::printf("  %s\n", starts.said.c_str());
   const auto [k, v] = off(fit(problem, starts.starts, 100));
   std::printf("  keys off by %.3g m, velocity by %.3g m/s\n", k, v);
-  // A rough loss amplifies last bits, and the velocity most. Measured with the
-  // default x86-64 build: 4.79e-3 m and 0.170 m/s on this project's machine
-  // (a CPU with FMA), 4.38e-3 m and 0.227 m/s on an emulated x86-64 without
-  // FMA (qemu64), where the C library's exp and log (the search's weights,
-  // step size and normal samples, the fit's log-scaled values) run other
-  // code (docs/building.md, "The C library on other CPUs"). Before: a
-  // -march=native build on this machine 4.89e-3 and 0.079, with Eigen's
-  // vector reductions in the search 4.25e-3 and 0.179, and before the AVX-512
-  // adjoint 4.45e-3 and 0.211. The keys are the claim; the velocity bound is
-  // just above the worst of the two CPUs.
-  EXPECT_LT(k, 5.2e-3);
-  EXPECT_LT(v, 0.24);
+  // Where the search lands on a loss this rough decides how near the
+  // descents get, and the last bits decide where it lands: each kernel repeats
+  // its own run bit for bit. Measured, avx512: 4.79e-3 m and 0.170 m/s;
+  // portable: 4.38e-3 m and 0.227 m/s, the figures once put down to an
+  // emulated CPU's C library (that CPU has no AVX-512, so it ran the portable
+  // kernel). The claim is the keys: within 5 mm, where one descent stops 12 cm off.
+  EXPECT_LT(k, avx512() ? 5.2e-3 : 4.8e-3);
+  EXPECT_LT(v, avx512() ? 0.19 : 0.25);
 }
 
 }  // namespace
