@@ -16,14 +16,14 @@ class ExplicitEuler final : public Integrator {
   int order() const override { return 1; }
   double stability_limit() const override { return 2.0; }
 
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors& F, double h, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs&, const ForceContext& context,
+                  const ClothState& in, const NodeVectors& F, double h, ClothState& out) override {
     const double* w = net.masses.inverse_mass.data();
     const double* free = net.masses.free.data();
     const Vec3 g = net.gravity;
     // One sweep: the acceleration neurons' outputs (ClothNetwork::accelerations)
     // are used where they are made.
-    for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+    for_node_parts(context.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
       for (std::size_t i = lo; i < hi; ++i) {
         out.x[i] = in.x[i] + h * in.vx[i];
         out.y[i] = in.y[i] + h * in.vy[i];

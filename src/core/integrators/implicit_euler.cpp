@@ -48,14 +48,14 @@ class ImplicitEuler final : public Integrator {
   int order() const override { return 1; }
   double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
 
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors& F, double h, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, const NodeVectors& F, double h, ClothState& out) override {
     StepReport report{0, 0, true};
-    linear_step(net, in, F, h, out, report, inputs.threads);
-    net.net_forces(out, inputs, force_a_);
+    linear_step(net, in, F, h, out, report, context.threads);
+    net.net_forces(out, inputs, context, force_a_);
     ++report.force_evaluations;
     if (!linearisation_holds(net, in, F, out, force_a_, h))
-      split(net, inputs, in, F, h, out, report);
+      split(net, inputs, context, in, F, h, out, report);
     return report;
   }
 
@@ -137,8 +137,9 @@ class ImplicitEuler final : public Integrator {
   // From `in` to h in pieces over which the linearisation holds, each a
   // linearised step from where the last one landed; the end force of each
   // piece is the start force of the next.
-  void split(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-             const NodeVectors& F, double h, ClothState& out, StepReport& report) {
+  void split(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+             const ClothState& in, const NodeVectors& F, double h, ClothState& out,
+             StepReport& report) {
     ClothState* at = &piece_a_;
     ClothState* trial = &piece_b_;
     NodeVectors* at_force = &force_a_;
@@ -150,8 +151,8 @@ class ImplicitEuler final : public Integrator {
     double t = 0;
     while (t < h) {
       const double p = pieces.trial(h - t);
-      linear_step(net, *at, *at_force, p, *trial, report, inputs.threads);
-      net.net_forces(*trial, inputs, *trial_force);
+      linear_step(net, *at, *at_force, p, *trial, report, context.threads);
+      net.net_forces(*trial, inputs, context, *trial_force);
       ++report.force_evaluations;
       if (!pieces.at_floor() &&
           !linearisation_holds(net, *at, *at_force, *trial, *trial_force, p)) {

@@ -13,10 +13,10 @@ namespace neurocloth {
 // springs (the external force, the scene's air and wind), is evaluated at the
 // start of the step into `other_force`.
 inline void inertial_displacement(const ClothNetwork& net, const ForceInputs& inputs,
-                                  const ClothState& in, double h, NodeVectors& other_force,
-                                  std::vector<double>& y) {
+                                  const ForceContext& context, const ClothState& in, double h,
+                                  NodeVectors& other_force, std::vector<double>& y) {
   const std::size_t n = net.node_count();
-  net.other_forces(in, inputs, other_force);
+  net.other_forces(in, inputs, context, other_force);
   const double* const v[3] = {in.vx.data(), in.vy.data(), in.vz.data()};
   const double* const f[3] = {other_force.x.data(), other_force.y.data(), other_force.z.data()};
   const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};

@@ -64,10 +64,12 @@ class Integrator {
   // (infinity when unconditionally stable). The adaptive step scales its bound by it.
   virtual double stability_limit() const = 0;
   // Advances `in` by h into `out` (which must not alias `in` unless steps_in_place()).
-  // `start_force` is net_forces(in, inputs) (stale when reads_start_force() is
-  // false): the caller has it for the adaptive rule, the step its FSAL cache. Every force
-  // evaluation of the step reads the same `inputs`.
-  virtual StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
+  // `start_force` is net_forces(in, inputs, context) (stale when
+  // reads_start_force() is false): the caller has it for the adaptive rule, the
+  // step its FSAL cache. Every force evaluation of the step reads the same
+  // `inputs`, and its sweeps split over context.threads.
+  virtual StepReport step(const ClothNetwork& net, const ForceInputs& inputs,
+                          const ForceContext& context, const ClothState& in,
                           const NodeVectors& start_force, double h, ClothState& out) = 0;
   // True when `out` may be the same object as `in`: a fixed step then touches
   // one state buffer instead of two (half the memory traffic on large cloths).
@@ -77,7 +79,7 @@ class Integrator {
   // over every spring for them.
   virtual bool reads_start_force() const { return true; }
   // True when the step damps the springs itself (damp_springs) and its forces
-  // come without the damping term (ForceInputs::spring_damping false): its
+  // come without the damping term (ForceContext::spring_damping false): its
   // stability bound is then the springs' stiffness alone.
   virtual bool damps_springs() const { return false; }
 };

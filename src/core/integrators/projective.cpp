@@ -65,11 +65,11 @@ void ProjectiveIntegrator::refuse_beyond_limit(const ClothNetwork& net) {
 }
 
 StepReport ProjectiveIntegrator::step(const ClothNetwork& net, const ForceInputs& inputs,
-                                      const ClothState& in, const NodeVectors&, double h,
-                                      ClothState& out) {
+                                      const ForceContext& context, const ClothState& in,
+                                      const NodeVectors&, double h, ClothState& out) {
   refactor_if_needed(net, h);
-  start_step(net, inputs, in, h);
-  const int iterations = iterate(net, in, h, inputs.threads, false);
+  start_step(net, inputs, context, in, h);
+  const int iterations = iterate(net, in, h, context.threads, false);
   for (std::size_t i = 0; i < n_; ++i) {
     const bool pinned = net.masses.free[i] == 0.0;  // moves on at its own velocity
     out.vx[i] = pinned ? in.vx[i] : x_[i] / h;
@@ -86,8 +86,8 @@ StepReport ProjectiveIntegrator::step(const ClothNetwork& net, const ForceInputs
 }
 
 void ProjectiveIntegrator::start_step(const ClothNetwork& net, const ForceInputs& inputs,
-                                      const ClothState& in, double h) {
-  inertial_displacement(net, inputs, in, h, other_force_, y_);
+                                      const ForceContext& context, const ClothState& in, double h) {
+  inertial_displacement(net, inputs, context, in, h, other_force_, y_);
   prev_ = y_;
   step_base(net);
   x_ = y_;

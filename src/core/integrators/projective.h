@@ -25,8 +25,8 @@ class ProjectiveIntegrator final : public Integrator {
   int order() const override { return 1; }
   double stability_limit() const override;
   bool reads_start_force() const override { return false; }  // other_forces() instead
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors&, double h, ClothState& out) override;
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, const NodeVectors&, double h, ClothState& out) override;
   int iterations() const { return iterations_; }
 
   // --- Learning (learn/fit/rollout.h) ---
@@ -59,9 +59,10 @@ class ProjectiveIntegrator final : public Integrator {
   // added to `g` and (when not null) `adj_inverse_mass`. `rate_adjoint`
   // carries dE/d(the measured rate) back from the later steps' omegas to the
   // step that measured it: zero it before the run's last step.
-  void step_adjoint(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                    double h, std::size_t k, ClothState& adj, NodeVectors& adj_other_force,
-                    SpringGradients& g, double* adj_inverse_mass, double& rate_adjoint);
+  void step_adjoint(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                    const ClothState& in, double h, std::size_t k, ClothState& adj,
+                    NodeVectors& adj_other_force, SpringGradients& g, double* adj_inverse_mass,
+                    double& rate_adjoint);
 
  private:
   static constexpr double kNearTolerance = 1e-13;
@@ -75,8 +76,8 @@ class ProjectiveIntegrator final : public Integrator {
   void refactor_if_needed(const ClothNetwork& net, double h);
   // The step's start: y (the inertial displacement), the right-hand side's
   // base, x = prev = y.
-  void start_step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  double h);
+  void start_step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, double h);
   // The step's iterations from start_step's x; with `keep`, every iterate and
   // every global solve's answer are kept for the adjoint.
   int iterate(const ClothNetwork& net, const ClothState& in, double h, StepThreads* team,

@@ -28,10 +28,10 @@
 namespace neurocloth {
 
 void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInputs& inputs,
-                                        const ClothState& in, double h, std::size_t k,
-                                        ClothState& adj, NodeVectors& adj_other_force,
-                                        SpringGradients& g, double* adj_inverse_mass,
-                                        double& rate_adjoint) {
+                                        const ForceContext& context, const ClothState& in, double h,
+                                        std::size_t k, ClothState& adj,
+                                        NodeVectors& adj_other_force, SpringGradients& g,
+                                        double* adj_inverse_mass, double& rate_adjoint) {
   const SpringLayer& L = net.springs;
   const std::size_t n = n_, N = 3 * n;
   const std::vector<double>& free = net.masses.free;
@@ -39,7 +39,7 @@ void ProjectiveIntegrator::step_adjoint(const ClothNetwork& net, const ForceInpu
   const double* const d_omegas = &d_omegas_[k * std::size_t(iterations_)];
   // The step's start again; its iterates from the tape, or the step again.
   refactor_if_needed(net, h);
-  start_step(net, inputs, in, h);
+  start_step(net, inputs, context, in, h);
   const std::size_t per_step = std::size_t(iterations_) * N;
   const bool taped = tape_iterates_ && iterate_tape_.size() >= (k + 1) * per_step;
   if (!taped) replay_ = omegas;

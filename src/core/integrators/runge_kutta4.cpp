@@ -16,8 +16,8 @@ class RungeKutta4 final : public Integrator {
   int order() const override { return 4; }
   double stability_limit() const override { return 2.78; }  // imaginary-axis limit 2*sqrt(2)
 
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors& F, double h, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, const NodeVectors& F, double h, ClothState& out) override {
     const double* w = net.masses.inverse_mass.data();
     const double* free = net.masses.free.data();
     const Vec3 g = net.gravity;
@@ -35,7 +35,7 @@ class RungeKutta4 final : public Integrator {
       // outputs, ClothNetwork::accelerations) goes into the result and makes
       // the next stage point in + c * h * slope. Node i reads the stage at i
       // before writing it, so the stage may be the one read.
-      for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+      for_node_parts(context.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
         for (std::size_t i = lo; i < hi; ++i) {
           const double vx = k_state->vx[i], vy = k_state->vy[i], vz = k_state->vz[i];
           const double ax = free[i] * (w[i] * f.x[i] + g.x());
@@ -57,7 +57,7 @@ class RungeKutta4 final : public Integrator {
         }
       });
       if (stage == 3) break;
-      net.net_forces(stage_, inputs, force_);
+      net.net_forces(stage_, inputs, context, force_);
       force = &force_;
       k_state = &stage_;
     }

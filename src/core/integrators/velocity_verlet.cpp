@@ -18,13 +18,13 @@ class VelocityVerlet final : public Integrator {
 
   // Each sweep uses the acceleration neurons' outputs (ClothNetwork::
   // accelerations) where they are made.
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors& F, double h, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, const NodeVectors& F, double h, ClothState& out) override {
     const double* w = net.masses.inverse_mass.data();
     const double* free = net.masses.free.data();
     const Vec3 g = net.gravity;
     const std::size_t n = net.node_count();
-    for_node_parts(inputs.threads, n, [&](std::size_t lo, std::size_t hi) {
+    for_node_parts(context.threads, n, [&](std::size_t lo, std::size_t hi) {
       for (std::size_t i = lo; i < hi; ++i) {  // kick, drift
         out.vx[i] = in.vx[i] + 0.5 * h * (free[i] * (w[i] * F.x[i] + g.x()));
         out.vy[i] = in.vy[i] + 0.5 * h * (free[i] * (w[i] * F.y[i] + g.y()));
@@ -34,8 +34,8 @@ class VelocityVerlet final : public Integrator {
         out.z[i] = in.z[i] + h * out.vz[i];
       }
     });
-    net.net_forces(out, inputs, force_);
-    for_node_parts(inputs.threads, n, [&](std::size_t lo, std::size_t hi) {
+    net.net_forces(out, inputs, context, force_);
+    for_node_parts(context.threads, n, [&](std::size_t lo, std::size_t hi) {
       for (std::size_t i = lo; i < hi; ++i) {  // kick
         out.vx[i] += 0.5 * h * (free[i] * (w[i] * force_.x[i] + g.x()));
         out.vy[i] += 0.5 * h * (free[i] * (w[i] * force_.y[i] + g.y()));

@@ -55,11 +55,11 @@ class VertexBlockDescent final : public Integrator {
   double stability_limit() const override { return std::numeric_limits<double>::infinity(); }
   bool reads_start_force() const override { return false; }  // other_forces() instead
 
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors&, double h, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ForceContext& context,
+                  const ClothState& in, const NodeVectors&, double h, ClothState& out) override {
     if (net.springs.node_a != node_a_ || net.springs.node_b != node_b_) build(net);
     if (net.masses.free != free_of_) start_rate_again(net);
-    inertial_displacement(net, inputs, in, h, other_force_, y_);
+    inertial_displacement(net, inputs, context, in, h, other_force_, y_);
     edge_weights(net, h);
     for (std::size_t i = 0; i < n_; ++i) {
       double* const r = node_.data() + 6 * i;
@@ -87,7 +87,7 @@ class VertexBlockDescent final : public Integrator {
       for (std::size_t colour = 0; colour + 1 < colour_begin_.size(); ++colour) {
         const std::int32_t* const nodes = colour_nodes_.data() + colour_begin_[colour];
         const std::size_t count = colour_begin_[colour + 1] - colour_begin_[colour];
-        for_parts(inputs.threads, n_, count, [&](std::size_t begin, std::size_t end) {
+        for_parts(context.threads, n_, count, [&](std::size_t begin, std::size_t end) {
           for (std::size_t k = begin; k < end; ++k) {
             if (stiffening)
               relax<true>(std::size_t(nodes[k]), threshold);

@@ -32,8 +32,8 @@ class AirDrag final : public ForceModule {
     return rate_;
   }
 
-  void add_forces(const ClothNetwork& net, const ForceInputs&, const ClothState& s,
-                  NodeVectors& F) const override {
+  void add_forces(const ClothNetwork& net, const ForceInputs&, const ForceContext&,
+                  const ClothState& s, NodeVectors& F) const override {
     // Masses are read from the network on every call, not cached: a material
     // change or weight ramp rescales them between steps. Pinned nodes get the
     // force too; the mass layer masks their acceleration, and skipping them
@@ -52,9 +52,9 @@ class AirDrag final : public ForceModule {
   }
 
   // F_i = -rate v_i / w_i: linear in v, in the rate and in the mass.
-  void add_forces_adjoint(const ClothNetwork& net, const ForceInputs&, const ClothState& s,
-                          const NodeVectors& adj_force, ClothState& adj, double* adj_inverse_mass,
-                          double* params) const override {
+  void add_forces_adjoint(const ClothNetwork& net, const ForceInputs&, const ForceContext&,
+                          const ClothState& s, const NodeVectors& adj_force, ClothState& adj,
+                          double* adj_inverse_mass, double* params) const override {
     const std::size_t n = net.node_count();
     const double* w = net.masses.inverse_mass.data();
     double rate_gradient = 0;
@@ -160,8 +160,8 @@ class Wind final : public ForceModule {
   // square root and nothing is normalised twice.
   // The gust is sampled at the step's start (inputs.time), so every force
   // evaluation of one step (RK4 stages, the implicit solve) sees the same wind.
-  void add_forces(const ClothNetwork&, const ForceInputs& inputs, const ClothState& s,
-                  NodeVectors& F) const override {
+  void add_forces(const ClothNetwork&, const ForceInputs& inputs, const ForceContext&,
+                  const ClothState& s, NodeVectors& F) const override {
     const double factor =
         amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(inputs.time, period_);
     const double wind[3] = {base_.x() * factor, base_.y() * factor, base_.z() * factor};
@@ -218,9 +218,9 @@ class Wind final : public ForceModule {
   // g = along uhat + across N with along, across functions of |u|, d = N.uhat
   // and |N|; its adjoint flows to u (the mean vertex velocity and the wind),
   // to N (the corners' positions) and to the coefficients.
-  void add_forces_adjoint(const ClothNetwork&, const ForceInputs& inputs, const ClothState& s,
-                          const NodeVectors& adj_force, ClothState& adj, double*,
-                          double* params) const override {
+  void add_forces_adjoint(const ClothNetwork&, const ForceInputs& inputs, const ForceContext&,
+                          const ClothState& s, const NodeVectors& adj_force, ClothState& adj,
+                          double*, double* params) const override {
     const double factor =
         amplitude_ == 0.0 ? 1.0 : 1.0 + amplitude_ * gust_signal(inputs.time, period_);
     const Vec3 wind = base_ * factor;

@@ -171,9 +171,10 @@ struct PortableChunks {
 
 }  // namespace
 
-void ClothNetwork::other_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
+void ClothNetwork::other_forces(const ClothState& s, const ForceInputs& in, const ForceContext& ctx,
+                                NodeVectors& F) const {
   external_force(in, F, 0, node_count());
-  add_module_forces(s, in, F);
+  add_module_forces(s, in, ctx, F);
 }
 
 // External force is the acceleration neurons' bias input: F = f_ext (or 0) on nodes [lo, hi).
@@ -192,18 +193,19 @@ void ClothNetwork::external_force(const ForceInputs& in, NodeVectors& F, std::si
   }
 }
 
-void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVectors& F) const {
+void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, const ForceContext& ctx,
+                              NodeVectors& F) const {
   // Resolved before any work: an avx512 the CPU cannot run throws here.
-  if (resolved(in.kernel) == SpringKernel::avx512) {
-    for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+  if (resolved(ctx.kernel) == SpringKernel::avx512) {
+    for_node_parts(ctx.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
       external_force(in, F, lo, hi);
-      spring_forces_avx512(*this, s, in.precision, in.spring_damping, F,
+      spring_forces_avx512(*this, s, ctx.precision, ctx.spring_damping, F,
                            static_cast<std::int32_t>(lo), static_cast<std::int32_t>(hi));
     });
   } else {
     with_kernel<PortableChunks>(
-        springs, s, in.precision, in.spring_damping, [&](const auto& chunks) {
-          for_node_parts(in.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
+        springs, s, ctx.precision, ctx.spring_damping, [&](const auto& chunks) {
+          for_node_parts(ctx.threads, node_count(), [&](std::size_t lo, std::size_t hi) {
             external_force(in, F, lo, hi);
             propagate_part(springs, chunks, F, static_cast<std::int32_t>(lo),
                            static_cast<std::int32_t>(hi));
@@ -211,23 +213,23 @@ void ClothNetwork::net_forces(const ClothState& s, const ForceInputs& in, NodeVe
         });
   }
   // The modules read whole arrays: after the parts, on this thread.
-  add_module_forces(s, in, F);
+  add_module_forces(s, in, ctx, F);
 }
 
 void ClothNetwork::add_module_forces(const ClothState& s, const ForceInputs& in,
-                                     NodeVectors& F) const {
+                                     const ForceContext& ctx, NodeVectors& F) const {
   for (std::size_t k = 0; k < force_modules.size(); ++k) {
-    if (k < in.clocks.size()) {
-      ScopedModuleTimer timer(in.clocks[k]);
-      force_modules[k]->add_forces(*this, in, s, F);
+    if (k < ctx.clocks.size()) {
+      ScopedModuleTimer timer(ctx.clocks[k]);
+      force_modules[k]->add_forces(*this, in, ctx, s, F);
     } else {
-      force_modules[k]->add_forces(*this, in, s, F);
+      force_modules[k]->add_forces(*this, in, ctx, s, F);
     }
   }
 }
 
 void ClothNetwork::net_forces(const ClothState& s, NodeVectors& F) const {
-  net_forces(s, ForceInputs{}, F);
+  net_forces(s, ForceInputs{}, ForceContext{}, F);
 }
 
 double ClothNetwork::external_potential(const ClothState& s, const ForceInputs& in) const {

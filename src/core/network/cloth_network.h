@@ -5,7 +5,8 @@
 // (weights, rest lengths, masses, gravity, the force modules). What changes
 // from step to step is not in it: the neuron outputs live in ClothState, the
 // other inputs of the acceleration neurons (external forces, the clock) in
-// ForceInputs, scratch activations in SpringActivations. So a const network
+// ForceInputs, how an evaluation runs (threads, arithmetic, clocks) in
+// ForceContext, scratch activations in SpringActivations. So a const network
 // can be evaluated on any state (RK4 stages, learning, rollback), and copies of
 // it are independent.
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "core/network/cloth_state.h"
 #include "core/network/cloth_topology.h"
+#include "core/network/force_context.h"
 #include "core/network/force_inputs.h"
 #include "core/network/mass_layer.h"
 #include "core/network/material.h"
@@ -86,15 +88,17 @@ class ClothNetwork {
   // neurons: F_j = sum_i w_ij f_i + f_ext,j (weights +-1), plus whatever the
   // force modules add. Allocates nothing.
   // A spring shorter than kMinSpringLength contributes no force (no direction).
-  // The springs' sweep is split over inputs.threads when it is set (the same
+  // The springs' sweep is split over context.threads when it is set (the same
   // bits as on one thread, step_threads.h). Throws std::invalid_argument, before
-  // any work, when the CPU cannot run inputs.kernel (spring_kernel.h).
-  void net_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
-  // The same with no external force, at time 0.
+  // any work, when the CPU cannot run context.kernel (spring_kernel.h).
+  void net_forces(const ClothState& state, const ForceInputs& inputs, const ForceContext& context,
+                  NodeVectors& force) const;
+  // The same with no external force, at time 0, in a default context.
   void net_forces(const ClothState& state, NodeVectors& force) const;
   // Everything net_forces adds except the spring layer: the external force and
   // the force modules (what a large-step solver treats as given over a step).
-  void other_forces(const ClothState& state, const ForceInputs& inputs, NodeVectors& force) const;
+  void other_forces(const ClothState& state, const ForceInputs& inputs, const ForceContext& context,
+                    NodeVectors& force) const;
   // How many springs are that short at `state` (a diagnostic, off the hot path).
   int degenerate_springs(const ClothState& state) const;
   // The force neurons' outputs themselves, one per spring (for inspection and
@@ -118,7 +122,7 @@ class ClothNetwork {
   void external_force(const ForceInputs& inputs, NodeVectors& force, std::size_t lo,
                       std::size_t hi) const;
   void add_module_forces(const ClothState& state, const ForceInputs& inputs,
-                         NodeVectors& force) const;
+                         const ForceContext& context, NodeVectors& force) const;
 };
 
 }  // namespace neurocloth

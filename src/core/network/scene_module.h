@@ -22,6 +22,7 @@
 #include <string>
 
 #include "core/network/cloth_state.h"
+#include "core/network/force_context.h"
 #include "core/network/force_inputs.h"
 #include "core/network/parameter_id.h"
 
@@ -96,17 +97,19 @@ class ForceModule : public SceneModule {
   // extent in m. Dissipative modules put in none.
   virtual double energy_bound(const ClothNetwork& /*net*/, double /*size*/) const { return 0; }
   // Adds the module's force on every node to `force` (N). Must not allocate.
-  // `inputs` are the step's (its time); `net` is the model this module is part of.
+  // `inputs` are the step's (its time); `context` how the evaluation runs (its
+  // threads); `net` is the model this module is part of.
   virtual void add_forces(const ClothNetwork& net, const ForceInputs& inputs,
-                          const ClothState& state, NodeVectors& force) const = 0;
+                          const ForceContext& context, const ClothState& state,
+                          NodeVectors& force) const = 0;
   // The adjoint of add_forces (back-propagation through time): given
   // adj_force = dE/dF, adds dE/dp and dE/dv into `adj_state`, dE/d(1/m_i) into
   // adj_inverse_mass (per node; null when not wanted), and dE/d(parameter)
   // into params[module_slot(...)] (kModuleParameterSlots of them).
   virtual void add_forces_adjoint(const ClothNetwork& /*net*/, const ForceInputs& /*inputs*/,
-                                  const ClothState& /*state*/, const NodeVectors& /*adj_force*/,
-                                  ClothState& /*adj_state*/, double* /*adj_inverse_mass*/,
-                                  double* /*params*/) const {}
+                                  const ForceContext& /*context*/, const ClothState& /*state*/,
+                                  const NodeVectors& /*adj_force*/, ClothState& /*adj_state*/,
+                                  double* /*adj_inverse_mass*/, double* /*params*/) const {}
 };
 
 // Where the nodes were when the step began (positions only: no constraint

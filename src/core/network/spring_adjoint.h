@@ -22,7 +22,7 @@ struct SpringGradients {
 
 // Adds the springs' contribution: adj += (dF/d state)^T adj_force, g += (dF/dw)^T adj_force.
 // `g` must be sized for the network's springs. `kernel`: the one the forces
-// were evaluated by (ForceInputs::kernel), whose arithmetic is differentiated;
+// were evaluated by (ForceContext::kernel), whose arithmetic is differentiated;
 // throws std::invalid_argument, before any work, when the CPU cannot run it.
 void spring_forces_adjoint(const ClothNetwork& net, const ClothState& state,
                            const NodeVectors& adj_force, ClothState& adj, SpringGradients& g,

@@ -12,7 +12,7 @@
 // differ from the portable loop's in the last place: runs through the two
 // kernels are compared in spring_kernel_test.cpp, and each kernel's forces
 // against the textbook formula in cloth_network_test.cpp (ClothNetworkKernel).
-// Which kernel runs is chosen per evaluation (ForceInputs::kernel,
+// Which kernel runs is chosen per evaluation (ForceContext::kernel,
 // spring_kernel.h). Internal to the core.
 //
 // Included only inside an AVX-512 region (avx512_region.h), after the headers

@@ -1,5 +1,5 @@
 #pragma once
-// Which code evaluates the spring layer's force neurons (ForceInputs::kernel,
+// Which code evaluates the spring layer's force neurons (ForceContext::kernel,
 // SolverSettings::kernel). Two kernels compute the same forces: the portable
 // loop (cloth_network.cpp's propagate_chunk, with reciprocal_sqrt.h), and the
 // hand-written AVX-512 one (spring_chunk_avx512.h). Both are compiled into

@@ -24,8 +24,8 @@ class NetworkPropagation final : public Integrator {
   bool steps_in_place() const override { return true; }
   bool damps_springs() const override { return implicit_damping_; }
 
-  StepReport step(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                  const NodeVectors& F, double tc, ClothState& out) override {
+  StepReport step(const ClothNetwork& net, const ForceInputs&, const ForceContext& context,
+                  const ClothState& in, const NodeVectors& F, double tc, ClothState& out) override {
     const double* __restrict w = net.masses.inverse_mass.data();
     const double* __restrict free = net.masses.free.data();
     const double g[3] = {net.gravity.x(), net.gravity.y(), net.gravity.z()};
@@ -36,7 +36,7 @@ class NetworkPropagation final : public Integrator {
     double* const p_out[3] = {out.x.data(), out.y.data(), out.z.data()};
     const bool damp = implicit_damping_;
     // Element-wise: node i reads only index i, so in == out is safe.
-    for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+    for_node_parts(context.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
       for (int c = 0; c < 3; ++c) {
         const double* f = force[c];
         const double* v0 = v_in[c];
@@ -59,8 +59,8 @@ class NetworkPropagation final : public Integrator {
     if (!damp) return {1, 0, true};
     // The start positions are still in `in` (in == out or not): the directions
     // the damping acts along are the ones the forces were taken at.
-    damp_springs(net, in, tc, v_out[0], v_out[1], v_out[2], inputs.threads);
-    for_node_parts(inputs.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
+    damp_springs(net, in, tc, v_out[0], v_out[1], v_out[2], context.threads);
+    for_node_parts(context.threads, net.node_count(), [&](std::size_t lo, std::size_t hi) {
       for (int c = 0; c < 3; ++c) {
         const double* p0 = p_in[c];
         const double* v1 = v_out[c];

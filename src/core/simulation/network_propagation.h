@@ -5,6 +5,7 @@
 // (network_propagation_adjoint.cpp), what a fit's rollout runs for each step
 // in reverse, as projective's adjoint sits beside projective.
 #include "core/network/cloth_network.h"
+#include "core/network/force_context.h"
 #include "core/network/force_inputs.h"
 #include "core/network/spring_adjoint.h"
 
@@ -20,9 +21,9 @@ namespace neurocloth {
 // modules to carry back (their adjoint is the caller's, as for every
 // integrator), `g` and `adj_inverse_mass` (null: not wanted) have the step's
 // share added. `forces` is scratch of the network's size.
-void network_step_adjoint(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                          double h, const NodeVectors* adj_start, ClothState& adj,
-                          NodeVectors& adj_force, NodeVectors& forces, SpringGradients& g,
-                          double* adj_inverse_mass);
+void network_step_adjoint(const ClothNetwork& net, const ForceInputs& inputs,
+                          const ForceContext& context, const ClothState& in, double h,
+                          const NodeVectors* adj_start, ClothState& adj, NodeVectors& adj_force,
+                          NodeVectors& forces, SpringGradients& g, double* adj_inverse_mass);
 
 }  // namespace neurocloth

@@ -5,10 +5,10 @@
 
 namespace neurocloth {
 
-void network_step_adjoint(const ClothNetwork& net, const ForceInputs& inputs, const ClothState& in,
-                          double h, const NodeVectors* adj_start, ClothState& adj,
-                          NodeVectors& adj_force, NodeVectors& forces, SpringGradients& g,
-                          double* adj_inverse_mass) {
+void network_step_adjoint(const ClothNetwork& net, const ForceInputs& inputs,
+                          const ForceContext& context, const ClothState& in, double h,
+                          const NodeVectors* adj_start, ClothState& adj, NodeVectors& adj_force,
+                          NodeVectors& forces, SpringGradients& g, double* adj_inverse_mass) {
   // From dE/d(p', v'): lv = dE/dv' + h dE/dp' is dE/dv, dE/dF = h free w lv,
   // dE/dw += h free F.lv, dE/dp = dE/dp' (+ the constraints' share); then
   // the springs' own adjoint through F.
@@ -35,13 +35,13 @@ void network_step_adjoint(const ClothNetwork& net, const ForceInputs& inputs, co
         lp[c][i] += lb[c][i];
   }
   if (adj_inverse_mass) {
-    net.net_forces(in, inputs, forces);
+    net.net_forces(in, inputs, context, forces);
     for (std::size_t i = 0; i < n; ++i)
       adj_inverse_mass[i] +=
           h * free[i] *
           (forces.x[i] * adj.vx[i] + forces.y[i] * adj.vy[i] + forces.z[i] * adj.vz[i]);
   }
-  spring_forces_adjoint(net, in, adj_force, adj, g, inputs.kernel);
+  spring_forces_adjoint(net, in, adj_force, adj, g, context.kernel);
 }
 
 }  // namespace neurocloth

@@ -17,8 +17,8 @@ double potential(const ClothNetwork& net, const ClothState& s, const ForceInputs
 
 // Total force on every free node (springs, external, weight), interleaved; 0 on pins.
 double total_force(const ClothNetwork& net, const ClothState& s, const ForceInputs& in,
-                   NodeVectors& F, std::vector<double>& out) {
-  net.net_forces(s, in, F);
+                   const ForceContext& context, NodeVectors& F, std::vector<double>& out) {
+  net.net_forces(s, in, context, F);
   double worst = 0;
   for (std::size_t i = 0; i < net.node_count(); ++i) {
     const double free = net.masses.free[i];
@@ -33,7 +33,7 @@ double total_force(const ClothNetwork& net, const ClothState& s, const ForceInpu
 }  // namespace
 
 RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings,
-                  const ForceInputs& inputs) {
+                  const ForceInputs& inputs, const ForceContext& context) {
   const std::size_t n = net.node_count();
   std::fill(state.vx.begin(), state.vx.end(), 0.0);
   std::fill(state.vy.begin(), state.vy.end(), 0.0);
@@ -64,7 +64,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
   double last_step = std::numeric_limits<double>::infinity();
   double mu = 100.0;  // 1/h^2 for h = 0.1 s: a cautious first step
   double energy = potential(net, state, inputs);
-  report.residual_force = total_force(net, state, inputs, F, f);
+  report.residual_force = total_force(net, state, inputs, context, F, f);
   for (int it = 0; it < settings.max_iterations; ++it) {
     if (report.residual_force <= force_tol && last_step <= settings.position_tolerance) {
       report.converged = true;
@@ -93,7 +93,7 @@ RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSetting
       energy = trial_energy;
       last_step = report.last_step = step;
       ++report.accepted_steps;
-      report.residual_force = total_force(net, state, inputs, F, f);
+      report.residual_force = total_force(net, state, inputs, context, F, f);
       mu = std::max(mu * 0.25, 1e-9);
     } else {
       mu = mu * 8.0;

@@ -34,9 +34,9 @@ struct RelaxReport {
 };
 
 // Relaxes `state` in place (velocities set to zero). External forces in `inputs`
-// count, as a potential -f.p. Never leaves NaN in `state`: a failed trial is
-// not accepted.
+// count, as a potential -f.p; the forces are evaluated as `context` says.
+// Never leaves NaN in `state`: a failed trial is not accepted.
 RelaxReport relax(const ClothNetwork& net, ClothState& state, const RelaxSettings& settings = {},
-                  const ForceInputs& inputs = {});
+                  const ForceInputs& inputs = {}, const ForceContext& context = {});
 
 }  // namespace neurocloth

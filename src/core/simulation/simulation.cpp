@@ -26,10 +26,10 @@ RunStatus Simulation::advance(double seconds) {
   ctx_.budget_left = allowance < 1e18 ? static_cast<long>(allowance) : 1000000000000000000L;
   // The team serves this call only (see StepContext::threads).
   struct LendTeam {
-    ForceInputs& inputs;
-    ~LendTeam() { inputs.threads = nullptr; }
-  } lend{run_.inputs};
-  run_.inputs.threads = ctx_.threads.get();
+    ForceContext& force;
+    ~LendTeam() { force.threads = nullptr; }
+  } lend{ctx_.force};
+  ctx_.force.threads = ctx_.threads.get();
   while (run_.status == RunStatus::ok && run_.time < t_end) {
     if (ctx_.budget_left <= 0) {
       budget_exhausted_ = true;
@@ -112,7 +112,7 @@ bool Simulation::adaptive_trial(StepController& tc, double frame_end) {
   begin_step();
   start_forces();
   if (ctx_.start_max_force < 0)
-    ctx_.start_max_force = net_.max_net_force(ctx_.start_forces(), run_.inputs.threads);
+    ctx_.start_max_force = net_.max_net_force(ctx_.start_forces(), ctx_.force.threads);
   const double tried = tc.trial(std::numeric_limits<double>::infinity());
   const double h = tc.trial(frame_end - run_.time);
   integrate(run_.cloth(), h, run_.back());
@@ -169,7 +169,7 @@ void Simulation::begin_step() {
 
 void Simulation::start_forces() {
   if (ctx_.forces_valid) return;
-  net_.net_forces(state(), run_.inputs, ctx_.forces[ctx_.current_forces]);
+  net_.net_forces(state(), run_.inputs, ctx_.force, ctx_.forces[ctx_.current_forces]);
   ctx_.forces_valid = true;
 }
 
@@ -188,13 +188,14 @@ StepStart Simulation::keep_step_start(bool in_place) {
 }
 
 void Simulation::integrate(const ClothState& in, double h, ClothState& out) {
-  const StepReport r = integrator_->step(net_, run_.inputs, in, ctx_.start_forces(), h, out);
+  const StepReport r =
+      integrator_->step(net_, run_.inputs, ctx_.force, in, ctx_.start_forces(), h, out);
   run_.counters.force_evaluations += r.force_evaluations;
   run_.counters.cg_iterations += r.cg_iterations;
 }
 
 void Simulation::constrain(const StepStart& before, ClothState& after, double h) {
-  const StepSpan span{run_.time, h, run_.inputs.threads};
+  const StepSpan span{run_.time, h, ctx_.force.threads};
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     ScopedModuleTimer timer(ctx_.constraint_clocks[k]);
     constraints_[k]->apply(net_, span, before, after, run_.module_states[k].get());
@@ -204,9 +205,9 @@ void Simulation::constrain(const StepStart& before, ClothState& after, double h)
 // The forces where a trial landed: what Table 1 judges it by, and the next
 // step's start forces if it is accepted.
 double Simulation::landing_max_force(const ClothState& landed) {
-  net_.net_forces(landed, run_.inputs, ctx_.landing_forces());
+  net_.net_forces(landed, run_.inputs, ctx_.force, ctx_.landing_forces());
   ++run_.counters.force_evaluations;
-  return net_.max_net_force(ctx_.landing_forces(), run_.inputs.threads);
+  return net_.max_net_force(ctx_.landing_forces(), ctx_.force.threads);
 }
 
 bool Simulation::force_grows(double m) const {

@@ -10,7 +10,8 @@
 // modules, the solver settings — is read by a step and changes only between
 // steps, through the calls below. The state (SimulationState) is everything a
 // step writes; run_state() and restore() save and put it back. The context
-// (StepContext) holds threads, clocks, and caches rebuilt from the other two.
+// (StepContext) holds threads, clocks, how forces are evaluated, and caches
+// rebuilt from the other two.
 // Every member is a value: a copy of a running simulation continues exactly as
 // the original would, bit for bit, and stepping one leaves the other alone.
 #include <array>

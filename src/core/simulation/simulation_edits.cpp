@@ -50,12 +50,12 @@ void check_weights(const ClothNetwork& net) {
   if (!net.gravity.allFinite()) refuse("gravity", 0, "finite", net.gravity.norm());
 }
 
-// The settings a force evaluation reads from ForceInputs: the spring layer's
+// The settings a force evaluation reads from its context: the spring layer's
 // arithmetic and the kernel that evaluates it.
-void set_spring_arithmetic(ForceInputs& in, const SolverSettings& s) {
-  in.precision = s.precision;
-  in.kernel = s.kernel;
-  in.spring_damping = s.damping == DampingMode::explicit_force;
+void set_spring_arithmetic(ForceContext& context, const SolverSettings& s) {
+  context.precision = s.precision;
+  context.kernel = s.kernel;
+  context.spring_damping = s.damping == DampingMode::explicit_force;
 }
 
 const SolverSettings& validated(const SolverSettings& s) {
@@ -101,12 +101,12 @@ Simulation::Simulation(ClothNetwork network, ClothState initial, SolverSettings 
   run_.buffers = {initial, initial};
   run_.checkpoint.state = initial;
   run_.monitor = DivergenceMonitor(net_, initial, settings_.divergence);
-  run_.inputs.clocks.resize(net_.force_modules.size());
-  set_spring_arithmetic(run_.inputs, settings_);
   for (const auto& c : constraints_)
     run_.module_states.push_back(c->make_state());
 
   ctx_.threads = OwnedStepThreads(settings_.threads);
+  ctx_.force.clocks.resize(net_.force_modules.size());
+  set_spring_arithmetic(ctx_.force, settings_);
   ctx_.constraint_clocks.resize(constraints_.size());
   ctx_.forces = {NodeVectors(net_.node_count()), NodeVectors(net_.node_count())};
   ctx_.step_start.resize(constraints_.empty() || !integrator_->steps_in_place() ? 0
@@ -152,16 +152,9 @@ void Simulation::set_state(const ClothState& s) {
   invalidate(Stale::forces);
 }
 
-// The context half of ForceInputs (clocks, threads, precision, kernel) belongs to this
-// simulation, not to the saved run: it is kept across the copy.
 void Simulation::restore(const SimulationState& s) {
   check_fits(s, net_.node_count(), constraints_.size());
-  std::vector<ModuleClock> clocks = std::move(run_.inputs.clocks);
-  StepThreads* threads = run_.inputs.threads;
   run_ = s;
-  run_.inputs.clocks = std::move(clocks);
-  run_.inputs.threads = threads;
-  set_spring_arithmetic(run_.inputs, settings_);
   invalidate(Stale::weights);
 }
 
@@ -170,7 +163,7 @@ void Simulation::set_solver_settings(const SolverSettings& settings) {
   // Made before anything changes too: an integrator may refuse this cloth.
   std::unique_ptr<Integrator> integrator = make_integrator(settings, net_);
   settings_ = settings;
-  set_spring_arithmetic(run_.inputs, settings_);
+  set_spring_arithmetic(ctx_.force, settings_);
   if (ctx_.threads.size() != settings_.threads) ctx_.threads = OwnedStepThreads(settings_.threads);
   integrator_ = std::move(integrator);
   ctx_.step_start.resize(
@@ -201,7 +194,7 @@ std::size_t Simulation::module_overhead_bytes() const {
   return net_.force_modules.capacity() * sizeof(net_.force_modules[0]) +
          constraints_.capacity() * sizeof(constraints_[0]) +
          run_.module_states.capacity() * sizeof(run_.module_states[0]) +
-         run_.inputs.clocks.capacity() * sizeof(ModuleClock) +
+         ctx_.force.clocks.capacity() * sizeof(ModuleClock) +
          ctx_.constraint_clocks.capacity() * sizeof(ModuleClock) +
          ctx_.step_start.allocated_bytes();
 }
@@ -210,7 +203,7 @@ std::vector<ModuleReport> Simulation::module_reports() const {
   std::vector<ModuleReport> out;
   for (std::size_t k = 0; k < net_.force_modules.size(); ++k) {
     const ForceModule& m = *net_.force_modules[k];
-    const ModuleClock& c = run_.inputs.clocks[k];
+    const ModuleClock& c = ctx_.force.clocks[k];
     out.push_back({m.type(), m.declaration, c.seconds, c.calls, m.state_bytes()});
   }
   for (std::size_t k = 0; k < constraints_.size(); ++k) {

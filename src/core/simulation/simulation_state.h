@@ -46,10 +46,7 @@ struct SimulationState {
   double time = 0;
   StepCounters counters;
   // The external forces and the start time of the step (ForceInputs::time):
-  // what a force evaluation reads besides the neurons. ForceInputs also
-  // carries the force modules' clocks, the threads, the precision and the
-  // kernel, which are context, not state: same_bits() ignores them and restore() keeps the
-  // running simulation's.
+  // what a force evaluation reads besides the neurons.
   ForceInputs inputs;
   std::vector<Cloned<ModuleState>> module_states;  // one per constraint (null: keeps nothing)
   Checkpoint checkpoint;

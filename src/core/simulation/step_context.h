@@ -1,9 +1,11 @@
 #pragma once
 // What a step needs that is neither model nor state (Box2D's b2StepContext,
-// Jolt's SoftBodyUpdateContext): who shares the sweeps, where the constraints'
-// wall time goes, and caches and scratch rebuilt from model and state. No
-// result depends on anything here: dropping every cache (drop()) and
-// recomputing gives the same bits, which is why Simulation::restore() may.
+// Jolt's SoftBodyUpdateContext): who shares the sweeps, how the forces are
+// evaluated, where the modules' wall time goes, and caches and scratch rebuilt
+// from model and state. No result depends on anything here but the force
+// evaluation's arithmetic, which is a copy of the settings (the model):
+// dropping every cache (drop()) and recomputing gives the same bits, which is
+// why Simulation::restore() may.
 // Allocated at construction or on a settings change, never by a step.
 #include <array>
 #include <vector>
@@ -11,15 +13,19 @@
 #include "core/base/step_threads.h"
 #include "core/integrators/stability.h"
 #include "core/network/cloth_state.h"
+#include "core/network/force_context.h"
 #include "core/network/module_clock.h"
 
 namespace neurocloth {
 
 struct StepContext {
   // Who shares the sweeps (SolverSettings::threads; a copy gets its own team).
-  // ForceInputs::threads points at it only inside advance(), so the inputs
-  // handed out never lend the team to another caller.
+  // force.threads points at it only inside advance(): a copy of the
+  // simulation, made between steps, never borrows the original's team.
   OwnedStepThreads threads;
+  // How every force evaluation of a step runs: the settings' precision, kernel
+  // and damping, the team above, and one clock per force module.
+  ForceContext force;
   std::vector<ModuleClock> constraint_clocks;  // one per constraint, a diagnostic
 
   // forces[current_forces] = net_forces(current cloth) when forces_valid; an

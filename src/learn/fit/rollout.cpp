@@ -45,8 +45,8 @@ void Rollout::step_forward(const RolloutModel& m, std::size_t k, const ClothStat
   // As Simulation::fixed_step takes it: forces at the step's start (a large
   // step makes its own), the integrator, then each constraint in order on the
   // step's result.
-  if (t.integrator->reads_start_force()) m.net.net_forces(in, t.inputs, t.forces);
-  t.integrator->step(m.net, t.inputs, in, t.forces, h, out);
+  if (t.integrator->reads_start_force()) m.net.net_forces(in, t.inputs, t.context, t.forces);
+  t.integrator->step(m.net, t.inputs, t.context, in, t.forces, h, out);
   const StepSpan span{steps_.start[k], h};
   for (std::size_t j = 0; j < m.constraints.size(); ++j) {
     pre[j] = out;
@@ -132,8 +132,8 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
   }
   double* adj_w = g.inverse_mass.empty() ? nullptr : g.inverse_mass.data();
   if (t.projective) {
-    t.projective->step_adjoint(net, t.inputs, in, h, k, adj, t.adj_force, g.springs, adj_w,
-                               t.rate_adjoint);
+    t.projective->step_adjoint(net, t.inputs, t.context, in, h, k, adj, t.adj_force, g.springs,
+                               adj_w, t.rate_adjoint);
     if (constrained)
       for (std::size_t i = 0; i < n; ++i) {
         adj.x[i] += t.adj_before.x[i];
@@ -141,11 +141,11 @@ void Rollout::step_backward(const RolloutModel& m, std::size_t k, const ClothSta
         adj.z[i] += t.adj_before.z[i];
       }
   } else {
-    network_step_adjoint(net, t.inputs, in, h, constrained ? &t.adj_before : nullptr, adj,
-                         t.adj_force, t.forces, g.springs, adj_w);
+    network_step_adjoint(net, t.inputs, t.context, in, h, constrained ? &t.adj_before : nullptr,
+                         adj, t.adj_force, t.forces, g.springs, adj_w);
   }
   for (std::size_t j = 0; j < net.force_modules.size(); ++j)
-    net.force_modules[j]->add_forces_adjoint(net, t.inputs, in, t.adj_force, adj, adj_w,
+    net.force_modules[j]->add_forces_adjoint(net, t.inputs, t.context, in, t.adj_force, adj, adj_w,
                                              g.force_modules[j].data());
 }
 
@@ -156,7 +156,7 @@ double Rollout::run(const RolloutModel& m, RolloutGradients* g) {
   const std::size_t n = m.net.node_count();
   if (initial_.size() != n) throw std::invalid_argument("rollout: state and model differ in size");
   prepare_integrator(m);
-  t.inputs.kernel = m.kernel;
+  t.context.kernel = m.kernel;
   if (t.forces.size() != n) {
     t.forces.resize(n);
     t.adj_force.resize(n);

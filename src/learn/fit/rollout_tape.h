@@ -8,6 +8,7 @@
 #include "core/integrators/integrator.h"
 #include "core/integrators/projective.h"
 #include "core/network/cloth_state.h"
+#include "core/network/force_context.h"
 #include "core/network/force_inputs.h"
 #include "learn/fit/rollout.h"
 
@@ -21,6 +22,10 @@ struct Rollout::Tape {
   NodeVectors forces, adj_force, adj_before;
   ClothState adj;
   ForceInputs inputs;
+  // Double with the damping term is the only step a fit has an adjoint of
+  // (fit_problem.cpp refuses the others); one thread, nothing timed; the
+  // scene's kernel (RolloutModel::kernel), set by each run.
+  ForceContext context;
   std::unique_ptr<Integrator> integrator;
   // A projective run's integrator (the fit's hooks, projective.h), and
   // dE/d(the Chebyshev rate its run measured), carried back to that step.

@@ -126,14 +126,15 @@ TEST(ImplicitMultigrid, TheImplicitStepRebuildsItWhenAWeightChanges) {
   NodeVectors f(net.node_count());
   ClothState out = in, fresh_out = in;
   net.net_forces(in, f);
-  used->step(net, ForceInputs{}, in, f, kStep, out);
+  used->step(net, ForceInputs{}, ForceContext{}, in, f, kStep, out);
   const ClothState before = out;
   for (double& k : net.springs.stiffness)
     k *= 3;
   net.net_forces(in, f);
-  const StepReport report = used->step(net, ForceInputs{}, in, f, kStep, out);
+  const StepReport report = used->step(net, ForceInputs{}, ForceContext{}, in, f, kStep, out);
   const auto fresh = make(net);
-  const StepReport fresh_report = fresh->step(net, ForceInputs{}, in, f, kStep, fresh_out);
+  const StepReport fresh_report =
+      fresh->step(net, ForceInputs{}, ForceContext{}, in, f, kStep, fresh_out);
   EXPECT_EQ(report.cg_iterations, fresh_report.cg_iterations);
   for (std::size_t i = 0; i < in.size(); ++i)
     ASSERT_EQ(out.position(i), fresh_out.position(i)) << "node " << i;

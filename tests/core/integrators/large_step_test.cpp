@@ -39,7 +39,7 @@ Moving moving_cloth(int n, bool stiffening = false) {
   ClothState next = m.state;
   for (int k = 0; k < 200; ++k) {
     m.net.net_forces(m.state, f);
-    integrator->step(m.net, ForceInputs{}, m.state, f, 2e-4, next);
+    integrator->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, 2e-4, next);
     std::swap(m.state, next);
   }
   return m;
@@ -107,8 +107,8 @@ ClothState iterated_step(IntegratorKind kind, const ClothNetwork& net, const Clo
   ClothState out = in;
   // The first step measures how fast plain iterations converge; the second,
   // from the same state, is Chebyshev-accelerated by that rate.
-  integrator->step(net, ForceInputs{}, in, f, h, out);
-  integrator->step(net, ForceInputs{}, in, f, h, out);
+  integrator->step(net, ForceInputs{}, ForceContext{}, in, f, h, out);
+  integrator->step(net, ForceInputs{}, ForceContext{}, in, f, h, out);
   return out;
 }
 
@@ -233,7 +233,7 @@ TEST(VertexBlockDescent, HalvesANewtonStepThatWouldRaiseTheNodesEnergy) {
   NodeVectors f(s.net.node_count());
   s.net.net_forces(s.state, f);
   ClothState out = s.state;
-  vbd->step(s.net, ForceInputs{}, s.state, f, h, out);
+  vbd->step(s.net, ForceInputs{}, ForceContext{}, s.state, f, h, out);
   const Vec3 landed = out.position(s.free_node);
   // Measured: exactly there, 0 m apart, with either spring kernel (vbd forms
   // its springs' terms itself); the full step would end 5 m off, a refused one
@@ -249,18 +249,19 @@ TEST(Projective, RefactorsWhenAWeightChanges) {
   NodeVectors f(m.net.node_count());
   ClothState out = m.state, fresh_out = m.state;
   m.net.net_forces(m.state, f);
-  used->step(m.net, ForceInputs{}, m.state, f, h, out);
+  used->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, h, out);
   const ClothState before = out;
   for (double& k : m.net.springs.stiffness)  // a material slider moves
     k *= 3;
   m.net.net_forces(m.state, f);
-  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // once: solved near the old factor
-  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // kept: refactored
+  used->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, h,
+             out);  // once: solved near the old factor
+  used->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, h, out);  // kept: refactored
   // An integrator that never saw the old weights steps to the same bits; a
   // stale factor (or a stale convergence rate) would not.
   const auto fresh =
       make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 64);
-  fresh->step(m.net, ForceInputs{}, m.state, f, h, fresh_out);
+  fresh->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, h, fresh_out);
   EXPECT_EQ(max_difference(out, fresh_out), 0.0);
   EXPECT_GT(max_difference(out, before), 1e-6);  // and the change mattered
 }
@@ -275,12 +276,13 @@ TEST(Projective, AOneOffStepSolvesItsOwnMatrix) {
   const auto used =
       make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
   ClothState out = m.state, direct = m.state;
-  used->step(m.net, ForceInputs{}, m.state, f, h, out);  // factored for h
-  const StepReport r = used->step(m.net, ForceInputs{}, m.state, f, other, out);
+  used->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, h, out);  // factored for h
+  const StepReport r = used->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, other, out);
   EXPECT_TRUE(r.cg_converged);
   const auto fresh =
       make_integrator(IntegratorKind::projective, m.net, kDefaultMinStepFraction, 512);
-  fresh->step(m.net, ForceInputs{}, m.state, f, other, direct);  // factored for `other`
+  fresh->step(m.net, ForceInputs{}, ForceContext{}, m.state, f, other,
+              direct);  // factored for `other`
   const ClothState reference = backward_euler(m.net, m.state, other);
   const double moved = max_difference(reference, m.state);
   EXPECT_LT(max_difference(out, reference), 1e-7 * moved);

@@ -180,14 +180,14 @@ TEST(SpringDamping, ForcesWithoutTheDampingTermAreTheElasticForces) {
   if (avx512_kernel_available()) kernels.push_back(SpringKernel::avx512);
   for (const SpringKernel kernel : kernels)
     for (const SpringPrecision precision : {SpringPrecision::float64, SpringPrecision::float32}) {
-      ForceInputs undamped, damped;
+      ForceContext undamped, damped;
       undamped.kernel = damped.kernel = kernel;
       undamped.precision = damped.precision = precision;
       undamped.spring_damping = false;
       NodeVectors a(net.node_count()), b(net.node_count()), c(net.node_count());
-      net.net_forces(moving, undamped, a);
-      net.net_forces(still, damped, b);
-      net.net_forces(moving, damped, c);
+      net.net_forces(moving, ForceInputs{}, undamped, a);
+      net.net_forces(still, ForceInputs{}, damped, b);
+      net.net_forces(moving, ForceInputs{}, damped, c);
       const std::string what = std::string(to_string(kernel)) + " " + to_string(precision);
       for (std::size_t i = 0; i < net.node_count(); ++i)
         ASSERT_EQ(a.at(i), b.at(i)) << what << " node " << i;

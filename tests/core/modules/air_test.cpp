@@ -66,7 +66,7 @@ NodeVectors module_forces(const ForceModule& m, const ClothTopology& topology,
   NodeVectors F(s.size());
   ForceInputs inputs;
   inputs.time = time;
-  m.add_forces(net, inputs, s, F);
+  m.add_forces(net, inputs, ForceContext{}, s, F);
   return F;
 }
 
@@ -280,7 +280,7 @@ TEST(AirDrag, ForceIsMinusRateTimesMassTimesVelocityOnEveryNode) {
   EXPECT_STREQ(drag->type(), "air_drag");
   NodeVectors F(3);
   F.x[1] = 10.0;  // adds to what is there
-  drag->add_forces(net, ForceInputs{}, s, F);
+  drag->add_forces(net, ForceInputs{}, ForceContext{}, s, F);
   for (int i = 0; i < 3; ++i) {
     const Vec3 expected =
         -spec.rate * net.mass(i) * v[i] + (i == 1 ? Vec3(10, 0, 0) : Vec3::Zero());
@@ -309,7 +309,7 @@ TEST(AirDrag, FreeNodeDecaysExponentiallyAndPinnedNodeStays) {
   const int steps = 1000;
   for (int k = 0; k < steps; ++k) {
     net.net_forces(s, F);
-    rk4->step(net, ForceInputs{}, s, F, h, next);
+    rk4->step(net, ForceInputs{}, ForceContext{}, s, F, h, next);
     s = next;
   }
   const double time = steps * h, decay = std::exp(-spec.rate * time);

@@ -46,11 +46,11 @@ class ClothNetworkKernel : public ::testing::TestWithParam<SpringKernel> {
     if (!missing.empty()) GTEST_SKIP() << missing;
   }
   SpringKernel kernel() const { return GetParam(); }
-  // No external force, at time 0 (what net_forces(state, force) reads), by this kernel.
-  ForceInputs inputs() const {
-    ForceInputs in;
-    in.kernel = kernel();
-    return in;
+  // One thread in double, as net_forces(state, force) evaluates, by this kernel.
+  ForceContext context() const {
+    ForceContext c;
+    c.kernel = kernel();
+    return c;
   }
 };
 
@@ -67,7 +67,7 @@ TEST_P(ClothNetworkKernel, LinearSpringForceByHand) {
   ClothState s(2);
   s.set_position(1, Vec3(2, 1, 2));
   NodeVectors F(2);
-  net.net_forces(s, inputs(), F);
+  net.net_forces(s, ForceInputs{}, context(), F);
   EXPECT_NEAR(F.at(0).x(), 20.0 * 2 / 3, 1e-13);
   EXPECT_NEAR(F.at(0).y(), 20.0 * 1 / 3, 1e-13);
   EXPECT_NEAR(F.at(0).z(), 20.0 * 2 / 3, 1e-13);
@@ -82,7 +82,7 @@ TEST_P(ClothNetworkKernel, DampingActsAlongTheSpringOnly) {
   s.set_position(1, Vec3(1, 0, 0));
   s.set_velocity(1, Vec3(3, 4, 0));
   NodeVectors F(2);
-  net.net_forces(s, inputs(), F);
+  net.net_forces(s, ForceInputs{}, context(), F);
   EXPECT_NEAR(F.at(0).x(), 6.0, 1e-13);
   EXPECT_NEAR(F.at(0).y(), 0.0, 1e-13);
   EXPECT_NEAR(F.at(1).x(), -6.0, 1e-13);
@@ -93,7 +93,7 @@ TEST_P(ClothNetworkKernel, ZeroLengthSpringIsSkippedNotDividedBy) {
   ClothState s(2);  // both nodes at the origin: the spring has no direction
   s.set_velocity(1, Vec3(1, 2, 3));
   NodeVectors F(2);
-  net.net_forces(s, inputs(), F);
+  net.net_forces(s, ForceInputs{}, context(), F);
   EXPECT_TRUE(F.at(0).allFinite());
   EXPECT_EQ(F.at(0), Vec3::Zero());
   EXPECT_EQ(F.at(1), Vec3::Zero());
@@ -108,7 +108,7 @@ TEST_P(ClothNetworkKernel, StiffeningSpringForceIsMinusEnergyGradient) {
     ClothState s(2);
     s.set_position(1, Vec3(len, 0, 0));
     NodeVectors F(2);
-    net.net_forces(s, inputs(), F);
+    net.net_forces(s, ForceInputs{}, context(), F);
     const double h = 1e-6;
     ClothState sp = s, sm = s;
     sp.x[1] += h;
@@ -121,21 +121,21 @@ TEST_P(ClothNetworkKernel, StiffeningSpringForceIsMinusEnergyGradient) {
   ClothState s(2);
   s.set_position(1, Vec3(1.3, 0, 0));
   NodeVectors F(2);
-  net.net_forces(s, inputs(), F);
+  net.net_forces(s, ForceInputs{}, context(), F);
   EXPECT_NEAR(F.at(0).x(), 210.0, 1e-9);
 }
 
 TEST_P(ClothNetworkKernel, ExternalForceAndGravityReachTheAcceleration) {
   ClothNetwork net = two_nodes(0.0, 0.0, 1.0);
   net.gravity = Vec3(0, -10, 0);
-  ForceInputs in = inputs();
+  ForceInputs in;
   in.external_force.resize(2);
   in.external_force.x[1] = 3.0;  // N on a 0.5 kg node: 6 m/s^2
   net.set_pinned(0, true);
   ClothState s(2);
   s.set_position(1, Vec3(1, 0, 0));
   NodeVectors F(2), a(2);
-  net.net_forces(s, in, F);
+  net.net_forces(s, in, context(), F);
   net.accelerations(F, a);
   EXPECT_EQ(a.at(0), Vec3::Zero());  // pinned
   EXPECT_NEAR(a.at(1).x(), 6.0, 1e-14);
@@ -164,7 +164,7 @@ TEST_P(ClothNetworkKernel, ForcesSumToZeroOnAClothAndMatchTheSpringOutputs) {
   const ClothNetwork net = scene.build_network();
   const ClothState s = shaken(scene, 7);
   NodeVectors F(s.size());
-  net.net_forces(s, inputs(), F);
+  net.net_forces(s, ForceInputs{}, context(), F);
   Vec3 sum = Vec3::Zero();
   double scale = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -255,10 +255,10 @@ TEST_P(ClothNetworkKernel, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAn
   const ClothNetwork net = scene.build_network();
   const ClothState s = shaken(scene, 5);
   NodeVectors in_double(s.size()), in_float(s.size()), split(s.size());
-  ForceInputs in = inputs();
-  net.net_forces(s, in, in_double);
-  in.precision = SpringPrecision::float32;
-  net.net_forces(s, in, in_float);
+  ForceContext ctx = context();
+  net.net_forces(s, ForceInputs{}, ctx, in_double);
+  ctx.precision = SpringPrecision::float32;
+  net.net_forces(s, ForceInputs{}, ctx, in_float);
   std::vector<double> bound(s.size(), 0.0);
   for (std::size_t k = 0; k < net.spring_count(); ++k) {
     const int a = net.springs.node_a[k], b = net.springs.node_b[k];
@@ -275,8 +275,8 @@ TEST_P(ClothNetworkKernel, NetForcesInFloatAreTheDoubleForcesToFloatRoundOffOnAn
   }
   EXPECT_TRUE(differs) << "the float path computed in double";
   OwnedStepThreads two(2);
-  in.threads = two.get();
-  net.net_forces(s, in, split);
+  ctx.threads = two.get();
+  net.net_forces(s, ForceInputs{}, ctx, split);
   for (std::size_t i = 0; i < s.size(); ++i)
     EXPECT_EQ(split.at(i), in_float.at(i)) << i;
 }
@@ -289,12 +289,12 @@ TEST_P(ClothNetworkKernel, NetForcesSplitOverThreadsAreTheOneThreadBits) {
   const ClothNetwork net = scene.build_network();
   const ClothState s = shaken(scene, 9);
   NodeVectors one(s.size()), split(s.size());
-  ForceInputs in = inputs();
-  net.net_forces(s, in, one);
+  ForceContext ctx = context();
+  net.net_forces(s, ForceInputs{}, ctx, one);
   for (int threads : {2, 3}) {
     OwnedStepThreads team(threads);
-    in.threads = team.get();
-    net.net_forces(s, in, split);
+    ctx.threads = team.get();
+    net.net_forces(s, ForceInputs{}, ctx, split);
     for (std::size_t i = 0; i < s.size(); ++i)
       ASSERT_EQ(split.at(i), one.at(i)) << "node " << i << ", " << threads << " threads";
   }

@@ -30,10 +30,10 @@ double dot(const NodeVectors& a, const NodeVectors& b) {
 // lF . F(state): what the adjoint differentiates.
 double weighted_forces(const ClothNetwork& net, const ClothState& s, const NodeVectors& lF,
                        SpringKernel kernel) {
-  ForceInputs inputs;
-  inputs.kernel = kernel;
+  ForceContext context;
+  context.kernel = kernel;
   NodeVectors F(s.size());
-  net.net_forces(s, inputs, F);
+  net.net_forces(s, ForceInputs{}, context, F);
   return dot(F, lF);
 }
 

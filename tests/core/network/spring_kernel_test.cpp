@@ -46,12 +46,12 @@ TEST(SpringKernel, Avx512IsRefusedByNameWhereTheCpuLacksIt) {
   const ClothNetwork net = test::asset_scene("hanging").build_network();
   const ClothState s = net.rest_state(test::asset_scene("hanging").topology.rest_positions);
   NodeVectors force(s.size());
-  ForceInputs inputs;
-  inputs.kernel = SpringKernel::avx512;
+  ForceContext context;
+  context.kernel = SpringKernel::avx512;
   if (avx512_kernel_available()) {
     EXPECT_EQ(resolved(SpringKernel::avx512), SpringKernel::avx512);
     EXPECT_NO_THROW(validate(settings));
-    EXPECT_NO_THROW(net.net_forces(s, inputs, force));
+    EXPECT_NO_THROW(net.net_forces(s, ForceInputs{}, context, force));
     return;
   }
   const std::string missing = kernel_unavailable(SpringKernel::avx512);
@@ -63,7 +63,7 @@ TEST(SpringKernel, Avx512IsRefusedByNameWhereTheCpuLacksIt) {
   } catch (const std::invalid_argument& e) {
     EXPECT_TRUE(test::contains(e.what(), "solver.kernel")) << e.what();
   }
-  EXPECT_THROW(net.net_forces(s, inputs, force), std::invalid_argument);
+  EXPECT_THROW(net.net_forces(s, ForceInputs{}, context, force), std::invalid_argument);
 }
 
 // A shipped scene run `seconds` in fixed steps through `kernel`.

@@ -48,10 +48,11 @@ struct OneStep {
   // E after one forward step from `s` with network `m`, plus before . p.
   double loss(const ClothNetwork& m, const ClothState& s, bool with_before) const {
     ForceInputs inputs;
+    ForceContext context;
     NodeVectors F(s.size());
-    m.net_forces(s, inputs, F);
+    m.net_forces(s, inputs, context, F);
     ClothState out = s;
-    make_network_propagation(m)->step(m, inputs, s, F, kStep, out);
+    make_network_propagation(m)->step(m, inputs, context, s, F, kStep, out);
     double E = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
       E += weight.position(i).dot(out.position(i)) + weight.velocity(i).dot(out.velocity(i));
@@ -80,9 +81,9 @@ TEST(NetworkStepAdjoint, MatchesCentralDifferencesOfTheStep) {
     SpringGradients g;
     g.resize(s.net.spring_count());
     std::vector<double> adj_w(n, 0.0);
-    ForceInputs inputs;
-    network_step_adjoint(s.net, inputs, s.in, kStep, with_before ? &s.before : nullptr, adj,
-                         adj_force, forces, g, adj_w.data());
+    network_step_adjoint(s.net, ForceInputs{}, ForceContext{}, s.in, kStep,
+                         with_before ? &s.before : nullptr, adj, adj_force, forces, g,
+                         adj_w.data());
 
     const double eps = 1e-6;
     double scale = 0;

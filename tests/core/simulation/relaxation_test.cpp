@@ -64,7 +64,7 @@ TEST(Relaxation, ExternalForcesCount) {
   EXPECT_GT(state.x[9], 0.05);
   // Equilibrium at the end node: spring force balances weight and pull.
   NodeVectors F(state.size());
-  net.net_forces(state, pull, F);
+  net.net_forces(state, pull, ForceContext{}, F);
   EXPECT_NEAR(F.at(9).x(), 0.0, 1e-9);
   EXPECT_NEAR(F.at(9).y() - net.mass(9) * 9.81, 0.0, 1e-9);
 }

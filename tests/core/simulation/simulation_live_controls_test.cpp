@@ -117,8 +117,8 @@ TEST(SimulationLiveControls, WindVelocityChangesLikeADeclaredOne) {
     ForceInputs inputs;
     inputs.time = time;
     NodeVectors a(s.size()), b(s.size());
-    live->add_forces(net, inputs, s, a);
-    built->add_forces(net, inputs, s, b);
+    live->add_forces(net, inputs, ForceContext{}, s, a);
+    built->add_forces(net, inputs, ForceContext{}, s, b);
     for (std::size_t i = 0; i < s.size(); ++i)
       ASSERT_EQ(a.at(i), b.at(i)) << "node " << i << " at t = " << time;
   }

@@ -98,7 +98,7 @@ TEST(Simulation, RejectedTrialsLeaveNoTrace) {
     NodeVectors F(a.size());
     for (double h : steps) {
       net.net_forces(a, F);
-      integrator->step(net, ForceInputs{}, a, F, h, b);
+      integrator->step(net, ForceInputs{}, ForceContext{}, a, F, h, b);
       std::swap(a, b);
     }
     EXPECT_EQ(test::state_hash(a), test::state_hash(sim.state())) << to_string(kind);
