@@ -43,6 +43,17 @@ Patch wavy_patch(unsigned seed) {
   return p;
 }
 
+// The squared distance from y to the patch's surface, trying every triangle.
+double brute_surface_distance2(const Patch& p, const Vec3& y) {
+  double best = HUGE_VAL;
+  for (const auto& t : p.surface->triangles) {
+    const Vec3 &a = p.nodes[t[0]], &b = p.nodes[t[1]], &c = p.nodes[t[2]];
+    const auto w = nearest_on_triangle(y, a, b, c);
+    best = std::min(best, (w[0] * a + w[1] * b + w[2] * c - y).squaredNorm());
+  }
+  return best;
+}
+
 TEST(Chamfer, TheNearestTriangleIsTheNearestOfAll) {
   const Patch p = wavy_patch(2);
   ChamferSettings s;
@@ -51,15 +62,8 @@ TEST(Chamfer, TheNearestTriangleIsTheNearestOfAll) {
   std::vector<Vec3> g;
   const double E = target.loss(p.nodes, g);
   double brute = 0;
-  for (const Vec3& y : p.cloud) {
-    double best = HUGE_VAL;
-    for (const auto& t : p.surface->triangles) {
-      const Vec3 &a = p.nodes[t[0]], &b = p.nodes[t[1]], &c = p.nodes[t[2]];
-      const auto w = nearest_on_triangle(y, a, b, c);
-      best = std::min(best, (w[0] * a + w[1] * b + w[2] * c - y).squaredNorm());
-    }
-    brute += 0.5 * best;
-  }
+  for (const Vec3& y : p.cloud)
+    brute += 0.5 * brute_surface_distance2(p, y);
   EXPECT_NEAR(E, brute, 1e-15 * brute);
 }
 
@@ -69,15 +73,8 @@ TEST(Chamfer, TheNearestTriangleIsTheNearestOfAll) {
 // nearest observed point, each squared distance through rho.
 double brute_force_two_sided(const Patch& p, const ChamferSettings& s) {
   double to_surface = 0;
-  for (const Vec3& y : p.cloud) {
-    double best = HUGE_VAL;
-    for (const auto& t : p.surface->triangles) {
-      const Vec3 &a = p.nodes[t[0]], &b = p.nodes[t[1]], &c = p.nodes[t[2]];
-      const auto w = nearest_on_triangle(y, a, b, c);
-      best = std::min(best, (w[0] * a + w[1] * b + w[2] * c - y).squaredNorm());
-    }
-    to_surface += 0.5 * robust_loss(s, best).value;
-  }
+  for (const Vec3& y : p.cloud)
+    to_surface += 0.5 * robust_loss(s, brute_surface_distance2(p, y)).value;
   std::vector<Vec3> samples = p.nodes;
   for (const auto& t : p.surface->triangles)
     samples.push_back((p.nodes[t[0]] + p.nodes[t[1]] + p.nodes[t[2]]) / 3);
