@@ -65,12 +65,15 @@ void LearningSession::update(const FrameSnapshot& snapshot, const CommandSink& p
   if (reference_) {
     const ReferencePose pose = reference_pose(*reference_, snapshot.time);
     reference_ended_ = pose.ended;
-    const SceneGeometry& g = *snapshot.geometry;
     double sum = 0;
     std::size_t matched = 0;
     for (const Vec3& p : pose.positions)
       ghost_points_.insert(ghost_points_.end(), {float(p.x()), float(p.y()), float(p.z())});
-    // The distance to the cloth where a point names its node (a cloud's do not).
+    // The distance to the cloth where a point names its node (a cloud's do
+    // not), when the snapshot carries the cloth's geometry to number them by
+    // (a default snapshot carries none).
+    static const SceneGeometry kNoCloth;
+    const SceneGeometry& g = snapshot.geometry ? *snapshot.geometry : kNoCloth;
     for (std::size_t k = 0; k < pose.nodes.size(); ++k) {
       const Vec3& p = pose.positions[k];
       const std::int32_t file = pose.nodes[k];
