@@ -13,12 +13,15 @@ GroundGrid place_ground_grid(const FrameSnapshot& snapshot) {
   double y = b.empty() ? 0.0 : std::min(0.0, b.lo.y());
   bool floor_found = false;
   if (snapshot.geometry)
-    for (const ModuleSpec& spec : snapshot.geometry->colliders)
-      if (const auto* p = std::get_if<PlaneSpec>(&spec))
-        if (p->normal.normalized().y() > 0.99) {  // a floor: the grid lies on it
-          y = floor_found ? std::max(y, p->point.y()) : p->point.y();
+    for (std::size_t i = 0; i < snapshot.geometry->colliders.size(); ++i)
+      if (const auto* p = std::get_if<PlaneSpec>(&snapshot.geometry->colliders[i])) {
+        const RigidPose pose = snapshot_collider_pose(snapshot, i);
+        if ((pose.rotation * p->normal).normalized().y() > 0.99) {  // a floor: the grid lies on it
+          const double height = pose.apply(p->point).y();
+          y = floor_found ? std::max(y, height) : height;
           floor_found = true;
         }
+      }
   // Cells about a tenth of the scene's size, a power of ten (0.1 m for a
   // cloth of one to three metres), over a square eight times the scene's size
   // so that the grid reaches the horizon of a framed view before it fades.

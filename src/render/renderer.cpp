@@ -9,7 +9,7 @@
 
 #include "render/background_cache.h"
 #include "render/cloth_layer.h"
-#include "render/collider_meshes.h"
+#include "render/collider_layer.h"
 #include "render/gl_buffer.h"
 #include "render/gl_program.h"
 #include "render/grid_layer.h"
@@ -42,9 +42,10 @@ std::string percent_label(double fraction) {
 }  // namespace
 
 // GL objects live as long as the renderer. Buffers that change every frame
-// (positions, normals, strain, overlays) keep their storage between frames;
-// the scene's fixed parts (triangles, springs, colliders, grid) are uploaded
-// again only when a snapshot arrives with a different SceneGeometry.
+// (positions, normals, strain, overlays, moving colliders) keep their storage
+// between frames; the scene's fixed parts (triangles, springs, still
+// colliders, grid) are uploaded again only when a snapshot arrives with a
+// different SceneGeometry.
 struct Renderer::Impl {
   SurfaceProgram surface;  // the cloth's and the colliders'
   ClothLayer cloth;
@@ -52,12 +53,12 @@ struct Renderer::Impl {
   GlProgram legend;
   GLint legend_viewport;
 
-  enum Vao { collider_vao, legend_vao, kVaoCount };
+  ColliderLayer colliders;
+  enum Vao { legend_vao, kVaoCount };
   GLuint vao[kVaoCount] = {};
-  GlBuffer collider_position, collider_normal, collider_index, legend_quad;
+  GlBuffer legend_quad;
 
   std::shared_ptr<const SceneGeometry> geometry;  // what the fixed buffers hold
-  std::size_t collider_indices = 0;
   bool geometry_uploaded = false;
   GridLayer grid;
   BackgroundCache background;
@@ -69,10 +70,6 @@ struct Renderer::Impl {
         grid(dir) {
     legend_viewport = legend.uniform("u_viewport");
     glGenVertexArrays(kVaoCount, vao);
-    glBindVertexArray(vao[collider_vao]);
-    vertex_attribute(vertex_slot::position, collider_position, 3, 3, 0);
-    vertex_attribute(vertex_slot::normal, collider_normal, 3, 3, 0);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, collider_index.id());
     glBindVertexArray(vao[legend_vao]);
     vertex_attribute(vertex_slot::position, legend_quad, 2, 3, 0);
     vertex_attribute(vertex_slot::scalar, legend_quad, 1, 3, 2);
@@ -84,15 +81,13 @@ struct Renderer::Impl {
   ~Impl() { glDeleteVertexArrays(kVaoCount, vao); }
 
   long allocations() const {
-    long n = cloth.allocations() + lines.allocations();
-    for (const GlBuffer* b : {&collider_position, &collider_normal, &collider_index, &legend_quad})
-      n += b->allocations();
-    return n + grid.allocations();
+    return cloth.allocations() + lines.allocations() + colliders.allocations() +
+           legend_quad.allocations() + grid.allocations();
   }
 
   void upload_geometry(const FrameSnapshot& s);
   void upload_frame(const FrameSnapshot& s, const RenderOptions& o);
-  // The still part of a frame: the clear, the colliders, the ground grid.
+  // The still part of a frame: the clear, the still colliders, the ground grid.
   void draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
                        const RenderOptions& o);
   void draw_legend(const RenderOptions& o, int width, int height);
@@ -113,12 +108,8 @@ void Renderer::Impl::upload_geometry(const FrameSnapshot& s) {
   }
   grid.place(s);
   const GroundGrid& ground = grid.ground();
-  const SurfaceMesh mesh = collider_mesh(geometry ? geometry->colliders : std::vector<ModuleSpec>(),
-                                         ground.centre, kPlaneReach * ground.half_size());
-  collider_position.upload(mesh.position);
-  collider_normal.upload(mesh.normal);
-  collider_index.upload(mesh.index);
-  collider_indices = mesh.index.size();
+  colliders.upload_geometry(geometry.get(), ground.centre, kPlaneReach * ground.half_size(),
+                            s.time);
   geometry_uploaded = true;
 }
 
@@ -129,6 +120,7 @@ void Renderer::Impl::upload_frame(const FrameSnapshot& s, const RenderOptions& o
                                 " nodes");
   cloth.upload_frame(s, o.strain);
   lines.upload_frame(s, o.nodes);
+  if (o.colliders) colliders.upload_frame(s);
 }
 
 void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Matrix4f& vp,
@@ -137,16 +129,7 @@ void Renderer::Impl::draw_background(const OrbitCamera& camera, const Eigen::Mat
   glClearColor(bg[0], bg[1], bg[2], 1);
   glClearDepth(1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (o.colliders && collider_indices > 0) {
-    surface.use(camera, vp, o.strain_max, palette::kCollider, palette::kCollider, false);
-    glBindVertexArray(vao[collider_vao]);
-    glVertexAttrib1f(vertex_slot::scalar, 0);
-    // Pushed back a little so the grid lying on a floor plane is drawn over it.
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1, 1);
-    glDrawElements(GL_TRIANGLES, GLsizei(collider_indices), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  }
+  if (o.colliders) colliders.draw_still(surface, camera, vp, o.strain_max);
   // Blended over the colliders and the clear without writing depth, so it hides
   // nothing drawn later; the cloth, opaque, covers it where it is in front.
   if (o.grid) grid.draw(camera, vp);
@@ -214,6 +197,9 @@ void Renderer::draw(const FrameSnapshot& snapshot, const OrbitCamera& camera,
     copied = m.background.holds(key) && m.background.copy_to_window();
   }
   if (!copied) m.draw_background(camera, vp, options);
+  // Moving colliders are not part of the still copy: drawn every frame, after
+  // the grid (which they cover where they dip below it, as the cloth does).
+  if (options.colliders) m.colliders.draw_moving(m.surface, camera, vp, options.strain_max);
   m.cloth.draw(m.surface, camera, vp, options);
   m.lines.draw(vp, snapshot, options, height);
   if (ghost_points) m.lines.draw_ghosts(vp, *ghost_points, height);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "core/modules/collider_motion.h"
+
 namespace neurocloth {
 namespace {
 
@@ -16,29 +18,51 @@ void Bounds::add(const Vec3& p) {
   hi = hi.cwiseMax(p);
 }
 
+RigidPose snapshot_collider_pose(const FrameSnapshot& s, std::size_t i) {
+  if (i < s.colliders.size()) return s.colliders[i].pose;
+  return collider_pose(s.geometry->colliders[i], s.time);
+}
+
 Bounds snapshot_bounds(const FrameSnapshot& s) {
   Bounds b;
   for (std::size_t i = 0; i < s.position.size() / 3; ++i)
     b.add(s.node(i));
   if (!s.geometry) return b;
-  for (const ModuleSpec& spec : s.geometry->colliders)
+  for (std::size_t i = 0; i < s.geometry->colliders.size(); ++i) {
+    const ModuleSpec& spec = s.geometry->colliders[i];
+    if (std::holds_alternative<PlaneSpec>(spec)) continue;
+    const RigidPose pose = snapshot_collider_pose(s, i);
+    auto add_ball = [&](const Vec3& centre, double r) {
+      b.add(pose.apply(centre) - Vec3::Constant(r));
+      b.add(pose.apply(centre) + Vec3::Constant(r));
+    };
     std::visit(
         [&](const auto& c) {
           using T = std::decay_t<decltype(c)>;
           if constexpr (std::is_same_v<T, BoxSpec>) {
-            b.add(c.center - c.half_extents);
-            b.add(c.center + c.half_extents);
+            for (int k = 0; k < 8; ++k)
+              b.add(pose.apply(c.center + Vec3((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1)
+                                              .cwiseProduct(c.half_extents)));
           } else if constexpr (std::is_same_v<T, SphereSpec>) {
-            b.add(c.center - Vec3::Constant(c.radius));
-            b.add(c.center + Vec3::Constant(c.radius));
+            add_ball(c.center, c.radius);
           } else if constexpr (std::is_same_v<T, CapsuleSpec>) {
-            for (const Vec3& end : {c.a, c.b}) {
-              b.add(end - Vec3::Constant(c.radius));
-              b.add(end + Vec3::Constant(c.radius));
+            add_ball(c.a, c.radius);
+            add_ball(c.b, c.radius);
+          } else if constexpr (std::is_same_v<T, MeshSpec>) {
+            if (!c.mesh) return;
+            const std::vector<float>& deformed =
+                i < s.colliders.size() ? s.colliders[i].vertices : std::vector<float>();
+            if (!deformed.empty()) {
+              for (std::size_t v = 0; v + 2 < deformed.size(); v += 3)
+                b.add(pose.apply(Vec3(deformed[v], deformed[v + 1], deformed[v + 2])));
+            } else {
+              for (const Vec3& p : c.mesh->surface.vertices)
+                b.add(pose.apply(p));
             }
           }
         },
         spec);
+  }
   return b;
 }
 

@@ -13,9 +13,15 @@ struct Bounds {
   void add(const Vec3& p);
 };
 
-// The cloth's nodes and the finite colliders (boxes, spheres, capsules);
-// planes are unbounded and left out. Non-finite positions are skipped.
+// The cloth's nodes and the finite colliders (boxes, spheres, capsules, mesh
+// obstacles) where the snapshot has them (rotated, moved, deformed); planes
+// are unbounded and left out. Non-finite positions are skipped.
 Bounds snapshot_bounds(const FrameSnapshot& snapshot);
+
+// Collider `i` of the snapshot's geometry: its pose at the snapshot's time,
+// from the snapshot's placements (computed from the declaration when the
+// snapshot has none).
+RigidPose snapshot_collider_pose(const FrameSnapshot& snapshot, std::size_t i);
 
 // The default camera (yaw and pitch) moved to frame snapshot_bounds for an
 // image of the given aspect (width / height); the default camera when empty.

@@ -210,6 +210,7 @@ struct SimulationThread::Impl {
   void publish() {
     Simulation& sim = live.simulation();
     FrameSnapshot& f = snapshots.back();
+    f.geometry = live.geometry();  // first: capture places its colliders
     sim.check_now();
     capture(sim, f);
     if (!finite_positions(f)) {
@@ -217,7 +218,6 @@ struct SimulationThread::Impl {
       capture(sim, f);
       if (!finite_positions(f)) return;
     }
-    f.geometry = live.geometry();
     f.forces = live.forces();
     snapshots.publish();
   }

@@ -1,6 +1,10 @@
-// The Scene panel: which scene runs, loading another, reset / pause / step,
-// and the scene's active modules with the keys they were declared with.
+// The Scene panel: which scene runs, loading another, adding an OBJ as an
+// obstacle, reset / pause / step, and the scene's active modules with the keys
+// they were declared with.
 #include <imgui.h>
+
+#include <array>
+#include <string>
 
 #include "ui/panels.h"
 #include "ui/ui_requests.h"
@@ -12,6 +16,30 @@ namespace {
 void load(PanelContext& ctx, const std::string& path) {
   const std::string error = request_scene(path, ctx.post);
   if (!error.empty()) ctx.messages.error = error;
+}
+
+// An OBJ as an obstacle: added to the scene as loaded, which starts over with it.
+void add_obstacle(PanelContext& ctx) {
+  UiValues& v = ctx.values;
+  ImGui::SetNextItemWidth(250);  // the button beside it is wider than Load
+  ImGui::InputTextWithHint("##obstacle", "obstacle OBJ file", v.obstacle_path.data(),
+                           v.obstacle_path.size());
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!ctx.status.scene);
+  if (ImGui::Button("Add obstacle")) {
+    const std::array<float, 3>& t = v.obstacle_translate;
+    const std::string error = request_obstacle(*ctx.status.scene, ctx.scene, v.obstacle_path.data(),
+                                               v.obstacle_scale, Vec3(t[0], t[1], t[2]), ctx.post);
+    if (!error.empty()) ctx.messages.error = "Add obstacle: " + error;
+  }
+  ImGui::EndDisabled();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputFloat("scale", &v.obstacle_scale, 0, 0, "%.4g");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(200);
+  ImGui::InputFloat3("at (m)", v.obstacle_translate.data(), "%.3g");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("where the OBJ's origin goes (metres, Y up); the scene restarts with it");
 }
 
 void run_controls(PanelContext& ctx) {
@@ -50,6 +78,7 @@ void scene_panel(PanelContext& ctx) {
   ImGui::InputText("##scene", ctx.values.scene_path.data(), ctx.values.scene_path.size());
   ImGui::SameLine();
   if (ImGui::Button("Load")) load(ctx, ctx.values.scene_path.data());
+  add_obstacle(ctx);
   run_controls(ctx);
   ImGui::TextDisabled("commands: %ld applied, %ld refused", s.commands_applied, s.commands_refused);
   if (ImGui::TreeNodeEx("Modules", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -3,9 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iterator>
+#include <nlohmann/json.hpp>
 
 #include "core/io/input_error.h"
+#include "core/io/json_fields.h"
+#include "core/modules/module_reader.h"
 #include "ui/accuracy_control.h"
 
 namespace neurocloth {
@@ -74,6 +78,33 @@ std::string request_scene(const std::string& path, const CommandSink& post) {
     return e.what();
   }
   post(LoadScene{path, std::move(scene)});
+  return "";
+}
+
+std::string request_obstacle(const Scene& running, SceneInfo& info, const std::string& obj_path,
+                             double scale, const Vec3& translate, const CommandSink& post) {
+  if (obj_path.empty()) return "obstacle: give the path of an OBJ file";
+  // Absolute, so the reader resolves it from the working directory (as the
+  // scene path beside it is) rather than from the scene's folder.
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(obj_path, ec);
+  const nlohmann::json module = {{"type", "mesh"},
+                                 {"obj", ec ? obj_path : absolute.lexically_normal().string()},
+                                 {"scale", scale},
+                                 {"translate", {translate.x(), translate.y(), translate.z()}}};
+  auto scene = std::make_shared<Scene>(running);
+  try {
+    const JsonFields in(nlohmann::json{{"modules", nlohmann::json::array({module})}}.dump(),
+                        "the Scene panel's obstacle");
+    std::vector<int> pins = scene->pins;  // a mesh module pins nothing
+    std::vector<ModuleDeclaration> added =
+        read_modules(in, in.root().at("modules"), scene->topology, pins);
+    scene->modules.insert(scene->modules.end(), added.begin(), added.end());
+    info = SceneInfo(*scene);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  post(LoadScene{scene->path, std::move(scene)});
   return "";
 }
 

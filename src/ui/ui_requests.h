@@ -33,6 +33,17 @@ std::string request_accuracy(const SceneInfo& scene, UiValues& values, const Com
 // "" when posted.
 std::string request_scene(const std::string& path, const CommandSink& post);
 
+// A triangle mesh from an OBJ file as an obstacle (a "mesh" module, scaled by
+// `scale`, its origin moved to `translate`; docs/scenes.md), added to
+// `running` (the scene as the thread loaded it): the module is read here
+// through the scene reader's own "mesh" reading, so a bad file is refused with
+// the reader's message naming it, and nothing is posted. Otherwise posts
+// LoadScene with the scene and its new obstacle (the run starts over, as a
+// Load does), refreshes `info` from it, and returns "". A relative path is
+// taken from the working directory.
+std::string request_obstacle(const Scene& running, SceneInfo& info, const std::string& obj_path,
+                             double scale, const Vec3& translate, const CommandSink& post);
+
 // Reads the rule base here, installs it in `scene`'s FuzzyView and posts
 // LoadRules. Returns the error, or "" when posted.
 std::string request_rules(SceneInfo& scene, const std::string& path, const CommandSink& post);

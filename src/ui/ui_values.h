@@ -37,6 +37,10 @@ struct UiValues {
   std::array<char, 512> scene_path{};
   std::array<char, 512> rules_path{};
   int preset = 0;  // index into preset_names()
+  // The Scene panel's obstacle to add: an OBJ, its scale and where its origin goes.
+  std::array<char, 512> obstacle_path{};
+  float obstacle_scale = 1;
+  std::array<float, 3> obstacle_translate{0, 0, 0};
 
   // Copies every setting from `status` when the run started over since the last call.
   void follow(const SimulationStatus& status);

@@ -41,17 +41,6 @@ void check_mesh(const Contract& c, const ClothTopology& t) {
   }
 }
 
-// The known quadratic time on one long face ("f 1 1 1 ... 1", 60,000
-// indices): a campaign that skips known kinds leaves lines over 4 KiB alone.
-bool long_line(const std::uint8_t* data, std::size_t size) {
-  std::size_t run = 0;
-  for (std::size_t i = 0; i < size; ++i) {
-    run = data[i] == '\n' ? 0 : run + 1;
-    if (run > 4096) return true;
-  }
-  return false;
-}
-
 }  // namespace
 }  // namespace neurocloth::fuzz
 

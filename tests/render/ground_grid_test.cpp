@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "render/snapshot_framing.h"
 #include "support/render_test_support.h"
 
@@ -29,7 +31,7 @@ TEST(GroundGrid, LiesOnAFloorPlane) {
   auto g = std::make_shared<SceneGeometry>(*s.geometry);
   PlaneSpec floor;
   floor.point = Vec3(0, 0.3, 0);
-  g->colliders.push_back(floor);
+  g->colliders.emplace_back(std::in_place_type<PlaneSpec>, floor);
   s.geometry = g;
   EXPECT_DOUBLE_EQ(place_ground_grid(s).centre.y(), 0.3);
 }

@@ -26,6 +26,8 @@ inline constexpr Limit kDirection{-1e4, 1e4, "",
                                   "only the direction counts; a component beyond 1e4 is a slip"};
 inline constexpr Limit kSpacing{1e-4, 100, "m", "nodes lie between 0.1 mm and 100 m apart"};
 inline constexpr Limit kMeshScale{1e-6, 1e6, "", "a scale beyond 1e-6 to 1e6 is a unit mistake"};
+inline constexpr Limit kAngle{-36000, 36000, "degrees",
+                              "a hundred turns is the most a rotation key may say"};
 inline constexpr Limit kSize{1e-4, 2e4, "m", "a collider is between 0.1 mm and 20 km across"};
 inline constexpr Limit kThickness{0, 1, "m", "a contact layer is at most 1 m thick"};
 inline constexpr Limit kGap{1e-5, 1, "m", "cloth keeps between 0.01 mm and 1 m from itself"};
@@ -57,6 +59,8 @@ inline constexpr Limit kDuration{0, 1e6, "s", "a scene's motion is scripted over
 inline constexpr Limit kStepFraction{
     1e-6, 1, "", "the adaptive step's floor is at least a millionth of its cap"};
 inline constexpr Limit kGrowthTolerance{0, 1e3, "", "a force may grow at most a thousand-fold"};
+inline constexpr Limit kFrameRate{
+    1e-3, 1e4, "frames/s", "a cache is sampled between once in 1000 s and 10000 times a second"};
 inline constexpr Limit kPeriod{1e-3, 1e6, "s", "a gust lasts between 1 ms and 1e6 s"};
 // --size N: a cloth resized to N x N nodes (resized_grid).
 inline constexpr Limit kGridSize{2, 1024, "", "nodes a side: at most a million nodes"};

@@ -1,34 +1,22 @@
 #pragma once
-// The solid shapes the colliders (colliders.cpp) push nodes out of: plane, box,
-// and capsule (a sphere is a capsule of length 0). Each answers three
-// questions about one node's step from `start` to `end`:
-//  - near(start, end, reach): branch-free on plain doubles, true whenever the
-//    step may have come within `reach` of the solid; the block scan calls it
-//    for every node and vectorises;
-//  - face_contact(start, end, ...): branch-free too, the contact where it is
-//    simple (a node resting on a box's face), bit for bit what contact() gives;
-//    false where contact() must decide;
-//  - contact(end, start): exact, run only for the nodes the others leave;
-// and jacobian() gives what learning needs of a contact.
+// The analytic solids the colliders (colliders.cpp) push nodes out of: plane,
+// box, and capsule (a sphere is a capsule of length 0), each in its own frame,
+// answering what shape_collider.h asks of a shape.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "core/modules/contact_response.h"
 #include "core/modules/module_specs.h"
 
 namespace neurocloth::collider_shapes {
 
 using Mat3 = Eigen::Matrix3d;
-
-// Where a point stands against a shape: signed distance (negative inside) and
-// the unit direction to push it out along. The plane through the surface point
-// with this normal supports the (convex) shape, so a node moved within the
-// plane parallel to it does not come closer to the shape.
-struct Contact {
-  double phi;
-  Vec3 normal;
-};
+// For these convex shapes the plane through a contact's surface point with its
+// normal supports the shape, so a node moved within the plane parallel to it
+// does not come closer to the shape.
+using contact_response::Contact;
 
 class PlaneShape {
  public:
@@ -41,6 +29,8 @@ class PlaneShape {
                     double&) const {
     return false;  // contact() is already one dot product
   }
+  bool bounds(Vec3&, Vec3&) const { return false; }                      // a half-space has none
+  Vec3 deformation_velocity(const Vec3&) const { return Vec3::Zero(); }  // rigid
   Contact contact(const Vec3& p, const Vec3&) const {
     const Vec3 n(nx_, ny_, nz_);
     return {n.dot(p) - offset_, n};
@@ -58,6 +48,12 @@ class PlaneShape {
 class BoxShape {
  public:
   explicit BoxShape(const BoxSpec& s) : c_(s.center), e_(s.half_extents) {}
+  bool bounds(Vec3& lo, Vec3& hi) const {
+    lo = c_ - e_;
+    hi = c_ + e_;
+    return true;
+  }
+  Vec3 deformation_velocity(const Vec3&) const { return Vec3::Zero(); }
   // The step's path may meet the box grown by reach: the bounding boxes overlap.
   bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
     return overlaps(bx, x, c_.x(), e_.x() + reach) & overlaps(by, y, c_.y(), e_.y() + reach) &
@@ -196,6 +192,12 @@ class CapsuleShape {
         ab_(b - a),
         inv_len2_(ab_.squaredNorm() > 0 ? 1.0 / ab_.squaredNorm() : 0.0),
         r_(radius) {}
+  bool bounds(Vec3& lo, Vec3& hi) const {
+    lo = a_.cwiseMin(a_ + ab_).array() - r_;
+    hi = a_.cwiseMax(a_ + ab_).array() + r_;
+    return true;
+  }
+  Vec3 deformation_velocity(const Vec3&) const { return Vec3::Zero(); }
   bool near(double, double, double, double x, double y, double z, double reach) const {
     const double px = x - a_.x(), py = y - a_.y(), pz = z - a_.z();
     double t = (px * ab_.x() + py * ab_.y() + pz * ab_.z()) * inv_len2_;

@@ -13,6 +13,10 @@ std::unique_ptr<ConstraintModule> make_collider(const PlaneSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const BoxSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const SphereSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec& spec);
+// mesh_collider.cpp: the same contact against a triangle mesh, and the
+// cloth's edges (its triangles') against the mesh's sharp edges.
+std::unique_ptr<ConstraintModule> make_collider(const MeshSpec& spec,
+                                                const ClothTopology& topology);
 
 // air.cpp
 std::shared_ptr<ForceModule> make_air_drag(const AirDragSpec& spec);

@@ -4,6 +4,9 @@
 #include <functional>
 #include <map>
 
+#include "core/io/asset_paths.h"
+#include "core/io/input_error.h"
+
 namespace neurocloth {
 using nlohmann::json;
 
@@ -59,7 +62,34 @@ ContactSpec read_contact(const ModuleFields& m) {
   return c;
 }
 
-#define CONTACT_KEYS "thickness", "friction", "static_friction"
+// "motion": keyframes of a rigid move (ColliderMotion). Times increase by at
+// least the smallest step: the obstacle's speed is the move over the time
+// between keys.
+ColliderMotion read_motion(const ModuleFields& m) {
+  ColliderMotion motion;
+  if (!m.has("motion")) return motion;
+  const json& list = m.obj().at("motion");
+  if (!list.is_array() || list.empty())
+    m.fail("motion",
+           "expected a non-empty array of {\"t\": s, \"translate\": [x, y, z], "
+           "\"rotate\": [rx, ry, rz]}");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ModuleFields k(m.in(), list[i], JsonLocator::element(m.at("motion"), i));
+    m.in().require_object(k.obj(), k.field());
+    m.in().allow_only(k.obj(), k.field(), {"t", "translate", "rotate"});
+    MotionKey key;
+    key.t = k.required_within("t", limits::kDuration);
+    if (!motion.keys.empty() && !(key.t >= motion.keys.back().t + limits::kTimeStep.low))
+      k.fail("t", "motion times must increase, by at least 1e-6 s (the key before is at " +
+                      show_number(motion.keys.back().t) + " s)");
+    key.translate = k.vec3_within("translate", key.translate, limits::kCoordinate);
+    key.rotate = k.vec3_within("rotate", key.rotate, limits::kAngle);
+    motion.keys.push_back(key);
+  }
+  return motion;
+}
+
+#define CONTACT_KEYS "thickness", "friction", "static_friction", "motion"
 
 ModuleSpec read_plane(const ModuleFields& m) {
   m.in().allow_only(m.obj(), m.field(), {"type", "point", "normal", CONTACT_KEYS});
@@ -69,16 +99,19 @@ ModuleSpec read_plane(const ModuleFields& m) {
   if (!(s.normal.norm() > 1e-9)) m.fail("normal", "must not be zero");
   s.normal.normalize();
   s.contact = read_contact(m);
+  s.motion = read_motion(m);
   return s;
 }
 
 ModuleSpec read_box(const ModuleFields& m) {
-  m.in().allow_only(m.obj(), m.field(), {"type", "center", "size", CONTACT_KEYS});
+  m.in().allow_only(m.obj(), m.field(), {"type", "center", "size", "rotate", CONTACT_KEYS});
   BoxSpec s;
   s.center = m.required_vec3_within("center", limits::kCoordinate);
   const Vec3 size = m.required_vec3_within("size", limits::kSize);
   s.half_extents = 0.5 * size;
+  s.rotate = m.vec3_within("rotate", s.rotate, limits::kAngle);
   s.contact = read_contact(m);
+  s.motion = read_motion(m);
   return s;
 }
 
@@ -88,6 +121,7 @@ ModuleSpec read_sphere(const ModuleFields& m) {
   s.center = m.required_vec3_within("center", limits::kCoordinate);
   s.radius = m.required_within("radius", limits::kSize);
   s.contact = read_contact(m);
+  s.motion = read_motion(m);
   return s;
 }
 
@@ -98,6 +132,44 @@ ModuleSpec read_capsule(const ModuleFields& m) {
   s.b = m.required_vec3_within("b", limits::kCoordinate);
   s.radius = m.required_within("radius", limits::kSize);
   s.contact = read_contact(m);
+  s.motion = read_motion(m);
+  return s;
+}
+
+// The OBJ (and a cache) are read here, with the scene: a bad file is refused
+// before anything runs, naming the file and who loaded it.
+ModuleSpec read_mesh(const ModuleFields& m) {
+  m.in().allow_only(
+      m.obj(), m.field(),
+      {"type", "obj", "scale", "translate", "rotate", "cache", "cache_fps", CONTACT_KEYS});
+  MeshSpec s;
+  s.obj = m.in().string(m.in().member(m.obj(), m.field(), "obj"), m.at("obj"));
+  s.scale = m.within("scale", s.scale, limits::kMeshScale);
+  s.translate = m.vec3_within("translate", s.translate, limits::kCoordinate);
+  s.rotate = m.vec3_within("rotate", s.rotate, limits::kAngle);
+  if (m.has("cache")) s.cache = m.in().string(m.obj().at("cache"), m.at("cache"));
+  if (m.has("cache_fps")) {
+    if (s.cache.empty()) m.fail("cache_fps", "needs a \"cache\" to sample");
+    s.cache_fps = m.within("cache_fps", 0.0, limits::kFrameRate);
+  }
+  s.contact = read_contact(m);
+  s.motion = read_motion(m);
+  ObstacleFiles files;
+  files.obj = resolve_path(m.in().file(), s.obj);
+  files.scale = s.scale;
+  files.placement.rotation = euler_xyz_degrees(s.rotate);
+  files.placement.translation = s.translate;
+  if (!s.cache.empty()) {
+    files.cache = resolve_path(m.in().file(), s.cache);
+    files.cache_fps = s.cache_fps;
+  }
+  try {
+    s.mesh = read_obstacle_mesh(files);
+  } catch (const InputError& e) {  // name the file (where the problem is) and who loaded it
+    throw InputError(e.file(), e.field(),
+                     e.message() + " (loaded by " + m.in().file() + ", field '" + m.field() + "')",
+                     e.line(), e.column());
+  }
   return s;
 }
 
@@ -246,6 +318,8 @@ std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& mo
       spec = read_sphere(m);
     else if (type == "capsule")
       spec = read_capsule(m);
+    else if (type == "mesh")
+      spec = read_mesh(m);
     else if (type == "air_drag")
       spec = read_air_drag(m);
     else if (type == "wind")

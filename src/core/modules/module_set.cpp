@@ -8,7 +8,8 @@
 namespace neurocloth {
 
 const char* module_type_names() {
-  return "plane, box, sphere, capsule, air_drag, wind, strain_limit, self_collision, pin_motion";
+  return "plane, box, sphere, capsule, mesh, air_drag, wind, strain_limit, self_collision, "
+         "pin_motion";
 }
 
 ModuleSet build_modules(const std::vector<ModuleDeclaration>& declarations,
@@ -30,6 +31,8 @@ ModuleSet build_modules(const std::vector<ModuleDeclaration>& declarations,
             constraint = make_self_collision(spec, topology);
           else if constexpr (std::is_same_v<T, PinMotionSpec>)
             constraint = make_pin_motion(spec, topology);
+          else if constexpr (std::is_same_v<T, MeshSpec>)
+            constraint = make_collider(spec, topology);
           else
             constraint = make_collider(spec);
           if (force) {

@@ -2,6 +2,7 @@
 // What a scene file declares under "modules", read and checked (module_reader)
 // but not yet built: plain values, so a Scene stays copyable and the viewer can
 // show and edit them. Units are SI; docs/scenes.md lists every key.
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "core/modules/obstacle_mesh.h"
 
 namespace neurocloth {
 
@@ -20,22 +22,40 @@ struct ContactSpec {
   std::optional<double> static_friction;  // unset: the kinetic value
 };
 
+// A collider's motion (docs/scenes.md, "Moving obstacles"): keyframes of a
+// rigid move of the collider as declared, interpolated linearly (translation
+// and each Euler angle) between keys and held before the first and after the
+// last. The rotation turns about the collider's own centre (pivot below).
+struct MotionKey {
+  double t = 0;                   // s
+  Vec3 translate = Vec3::Zero();  // m
+  Vec3 rotate = Vec3::Zero();     // degrees, XYZ (Blender's order)
+};
+struct ColliderMotion {
+  std::vector<MotionKey> keys;  // empty: fixed in space
+  bool moves() const { return !keys.empty(); }
+};
+
 struct PlaneSpec {  // the half-space below a plane is solid
   Vec3 point = Vec3(0, 0, 0);
   Vec3 normal = Vec3(0, 1, 0);  // unit after reading; points out of the solid
   ContactSpec contact;
+  ColliderMotion motion;  // pivot: point
 };
 
-struct BoxSpec {  // axis-aligned, solid
+struct BoxSpec {  // solid; axis-aligned unless rotated
   Vec3 center = Vec3(0, 0, 0);
   Vec3 half_extents = Vec3(0.5, 0.5, 0.5);  // m, each > 0
+  Vec3 rotate = Vec3::Zero();               // degrees, XYZ, about the centre
   ContactSpec contact;
+  ColliderMotion motion;  // pivot: center
 };
 
 struct SphereSpec {
   Vec3 center = Vec3(0, 0, 0);
   double radius = 0.5;  // m, > 0
   ContactSpec contact;
+  ColliderMotion motion;  // pivot: center
 };
 
 struct CapsuleSpec {  // the points within `radius` of the segment a-b
@@ -43,6 +63,21 @@ struct CapsuleSpec {  // the points within `radius` of the segment a-b
   Vec3 b = Vec3(1, 0, 0);
   double radius = 0.1;  // m, > 0
   ContactSpec contact;
+  ColliderMotion motion;  // pivot: the middle of a-b
+};
+
+// A triangle mesh from an OBJ (obstacle_mesh.h): a closed mesh is solid, an
+// open one a two-sided shell kept `thickness` away on either side.
+struct MeshSpec {
+  std::string obj;  // as the scene wrote it (relative to the scene's folder)
+  double scale = 1.0;
+  Vec3 translate = Vec3::Zero();             // m
+  Vec3 rotate = Vec3::Zero();                // degrees, XYZ, about the OBJ's origin
+  std::string cache;                         // as written: a PC2 or MDD deforming it, or ""
+  double cache_fps = 0;                      // a PC2's frames per second
+  std::shared_ptr<const ObstacleMesh> mesh;  // read with the scene, placed
+  ContactSpec contact;
+  ColliderMotion motion;  // pivot: translate (the OBJ's origin, placed)
 };
 
 // Linear air drag on every free node: F = -rate * m * v.
@@ -93,8 +128,15 @@ struct PinMotionSpec {
   double frequency = 0;  // Hz; used when there are no keyframes
 };
 
-using ModuleSpec = std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, AirDragSpec, WindSpec,
-                                StrainLimitSpec, SelfCollisionSpec, PinMotionSpec>;
+using ModuleSpec = std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, MeshSpec, AirDragSpec,
+                                WindSpec, StrainLimitSpec, SelfCollisionSpec, PinMotionSpec>;
+
+// Whether a declared module is a collider (the solids the cloth touches).
+inline bool is_collider(const ModuleSpec& spec) {
+  return std::holds_alternative<PlaneSpec>(spec) || std::holds_alternative<BoxSpec>(spec) ||
+         std::holds_alternative<SphereSpec>(spec) || std::holds_alternative<CapsuleSpec>(spec) ||
+         std::holds_alternative<MeshSpec>(spec);
+}
 
 struct ModuleDeclaration {
   std::string type;         // as written in the scene ("box", ...)

@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "core/modules/collider_motion.h"
 #include "core/scene/scene.h"
 
 namespace neurocloth {
@@ -42,16 +43,8 @@ std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene) {
     g->rest_length.push_back(static_cast<float>(
         (scene.topology.rest_positions[s.b] - scene.topology.rest_positions[s.a]).norm()));
   }
-  for (const ModuleDeclaration& m : scene.modules) {
-    std::visit(
-        [&](const auto& spec) {
-          using T = std::decay_t<decltype(spec)>;
-          if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
-                        std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec>)
-            g->colliders.push_back(spec);
-        },
-        m.spec);
-  }
+  for (const ModuleDeclaration& m : scene.modules)
+    if (is_collider(m.spec)) g->colliders.push_back(m.spec);
   return g;
 }
 
@@ -67,6 +60,34 @@ void capture(const Simulation& sim, FrameSnapshot& out) {
     out.pinned[i] = sim.network().masses.pinned(i) ? 1 : 0;
   }
   out.time = sim.time();
+  place_colliders(out.geometry.get(), out.time, out.colliders);
+}
+
+void place_colliders(const SceneGeometry* geometry, double t,
+                     std::vector<FrameSnapshot::ColliderPlacement>& out) {
+  if (!geometry) {
+    out.clear();
+    return;
+  }
+  out.resize(geometry->colliders.size());
+  // A deforming mesh's vertices in double, before they become the snapshot's
+  // floats: kept per thread, so a frame allocates nothing once it has grown.
+  thread_local std::vector<Vec3> deformed;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const ModuleSpec& spec = geometry->colliders[i];
+    FrameSnapshot::ColliderPlacement& p = out[i];
+    p.pose = collider_posed(spec) ? collider_pose(spec, t) : RigidPose{};
+    const auto* mesh = std::get_if<MeshSpec>(&spec);
+    if (!mesh || !mesh->mesh || !mesh->mesh->deforms()) {
+      p.vertices.clear();
+      continue;
+    }
+    obstacle_vertices_at(*mesh->mesh, t, deformed);
+    p.vertices.resize(3 * deformed.size());
+    for (std::size_t v = 0; v < deformed.size(); ++v)
+      for (int d = 0; d < 3; ++d)
+        p.vertices[3 * v + std::size_t(d)] = static_cast<float>(deformed[v][d]);
+  }
 }
 
 }  // namespace neurocloth

@@ -2,8 +2,9 @@
 // What the renderer draws: a plain copy of the cloth at one moment. The
 // simulation thread fills one and publishes it; the render thread reads it
 // without any lock and never touches the live simulation. What never changes
-// during a run (triangles, springs, colliders) is shared between snapshots,
-// not copied each frame.
+// during a run (triangles, springs, the colliders' shapes) is shared between
+// snapshots, not copied each frame; where each collider is at the moment (a
+// moving obstacle's pose, a deforming one's vertices) is copied.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "core/geometry/rigid_pose.h"
 #include "core/modules/module_specs.h"
 #include "core/network/cloth_topology.h"
 
@@ -32,7 +34,7 @@ struct SceneGeometry {
   std::vector<std::int32_t> spring_a, spring_b;
   std::vector<SpringFamily> spring_family;
   std::vector<float> rest_length;     // m, per spring (for the strain colour map)
-  std::vector<ModuleSpec> colliders;  // PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec only
+  std::vector<ModuleSpec> colliders;  // colliders only (is_collider)
   std::size_t node_count = 0;
   NodeNumbering numbering;  // the file's vertex of each node: what the user is shown
 };
@@ -48,6 +50,15 @@ struct FrameSnapshot {
     Vec3 anchor;  // the point it pulls towards (the cursor on its drag plane)
   };
   std::vector<AppliedForce> forces;
+  // Each of geometry->colliders where it is at `time` (collider_motion.h).
+  struct ColliderPlacement {
+    RigidPose pose;  // its shape frame to the world (identity for a collider neither
+                     // rotated nor moving)
+    // A deforming mesh's vertices at `time` in its shape frame (before `pose`),
+    // x, y, z per vertex in the OBJ's order; empty for every other collider.
+    std::vector<float> vertices;
+  };
+  std::vector<ColliderPlacement> colliders;
   double time = 0;  // simulated s
   long serial = 0;  // increases with every published snapshot
 
@@ -57,7 +68,13 @@ struct FrameSnapshot {
 };
 
 std::shared_ptr<const SceneGeometry> make_geometry(const Scene& scene);
-// Copies the simulation's positions and pins into `out` (no allocation once sized).
+// Copies the simulation's positions and pins into `out`, and places
+// out.geometry's colliders at the simulation's time (set the geometry first;
+// none without one). No allocation once sized; a collider that does not move
+// costs nothing.
 void capture(const Simulation& sim, FrameSnapshot& out);
+// The colliders' placements alone: `geometry`'s colliders at time t.
+void place_colliders(const SceneGeometry* geometry, double t,
+                     std::vector<FrameSnapshot::ColliderPlacement>& out);
 
 }  // namespace neurocloth

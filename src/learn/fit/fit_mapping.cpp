@@ -22,7 +22,8 @@ void set_spec_parameter(ModuleSpec& spec, const ParameterId& id, double value) {
         } else if constexpr (std::is_same_v<T, AirDragSpec>) {
           if (id.parameter == ModuleParameter::rate) s.rate = value;
         } else if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
-                             std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec>) {
+                             std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec> ||
+                             std::is_same_v<T, MeshSpec>) {
           if (id.parameter == ModuleParameter::friction) s.contact.friction = value;
         }
       },

@@ -59,7 +59,8 @@ void patch_module(nlohmann::ordered_json& out, const ModuleSpec& was, const Modu
           if (n.lift != w.lift) out["lift"] = n.lift;
           if (n.skin != w.skin) out["skin"] = n.skin;
         } else if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
-                             std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec>) {
+                             std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec> ||
+                             std::is_same_v<T, MeshSpec>) {
           patch_contact(out, w.contact, n.contact);
         } else if constexpr (std::is_same_v<T, PinMotionSpec>) {
           if (n.keyframes != w.keyframes) {  // a fitted path: every key, as the reader reads them

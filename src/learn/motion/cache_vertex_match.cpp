@@ -11,17 +11,6 @@
 namespace neurocloth {
 namespace {
 
-Vec3 z_up_to_y_up(const Vec3& p) {
-  return Vec3(p.x(), p.z(), -p.y());
-}
-
-double rms(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool turn_a) {
-  double sum = 0;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    sum += ((turn_a ? z_up_to_y_up(a[k]) : a[k]) - b[k]).squaredNorm();
-  return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, a.size())));
-}
-
 std::string metres(double v) {
   char s[32];
   std::snprintf(s, sizeof s, "%.3g m", v);
@@ -45,13 +34,6 @@ double size_of(const std::vector<Vec3>& points) {
 }
 
 }  // namespace
-
-bool cache_is_z_up(const std::vector<Vec3>& first_frame, const std::vector<Vec3>& mesh,
-                   double& as_written, double& turned) {
-  as_written = rms(first_frame, mesh, false);
-  turned = rms(first_frame, mesh, true);
-  return turned < as_written;  // a tie (a cloth symmetric about both) keeps the file's axes
-}
 
 std::vector<std::int32_t> mesh_nodes(const std::vector<Vec3>& mesh,
                                      const std::vector<Vec3>& scene_positions,
@@ -117,11 +99,7 @@ void match_cache_to_scene(ReferenceMotion& cache, const std::vector<Vec3>& mesh,
                           const std::string& mesh_path, std::size_t node_count,
                           const std::vector<Vec3>& scene_positions) {
   const std::size_t vertices = cache.frames.front().positions.size();
-  if (vertices != mesh.size())
-    throw InputError(cache.path, "vertex count",
-                     "the cache has " + std::to_string(vertices) + " vertices, its mesh '" +
-                         mesh_path + "' " + std::to_string(mesh.size()) +
-                         ": not the mesh it deforms");
+  check_cache_vertex_count(cache.path, vertices, mesh_path, mesh.size());
   if (vertices != node_count)
     throw InputError(cache.path, "vertex count",
                      "the cache and its mesh '" + mesh_path + "' have " + std::to_string(vertices) +

@@ -4,8 +4,10 @@
 //
 //  - which way is up: the scene is Y-up; a cache is read as written or turned
 //    from Z-up, (x, y, z) -> (x, z, -y), whichever puts its first frame
-//    closer (rms) to the mesh. Blender writes PC2 Y-up by default and MDD
-//    Z-up, and the first frame of a cloth's cache sits near its rest mesh;
+//    closer (rms) to the mesh (cache_is_z_up, core/io/point_cache_file.h: the
+//    rule a deforming obstacle's cache follows too). Blender writes PC2 Y-up
+//    by default and MDD Z-up, and the first frame of a cloth's cache sits near
+//    its rest mesh;
 //  - which node a vertex is: vertex k is node k when the mesh's vertices sit
 //    on the scene's nodes in order; else each vertex is matched to the scene
 //    node at its place (a k-d tree), since another program may number a grid
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "core/io/point_cache_file.h"
 #include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
@@ -25,11 +28,6 @@ namespace neurocloth {
 // cloth's size (its bounding box's diagonal). An OBJ's six decimals are far
 // inside it; a neighbouring node of any real cloth is far outside.
 inline constexpr double kCacheMeshTolerance = 1e-4;
-
-// True when the cache's first frame is closer (rms) to `mesh` turned from
-// Z-up to Y-up than as written; `as_written` and `turned` get both rms (m).
-bool cache_is_z_up(const std::vector<Vec3>& first_frame, const std::vector<Vec3>& mesh,
-                   double& as_written, double& turned);
 
 // The scene node of each mesh vertex (a permutation of 0 to n - 1); empty
 // when vertex k is node k. `note` says which and how closely. Throws

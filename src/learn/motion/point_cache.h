@@ -1,18 +1,13 @@
 #pragma once
 // Another simulator's point cache as a reference motion: every vertex of a
 // mesh at every frame (docs/learning.md, "Point clouds and point caches: the
-// files"). Two formats, told apart by the extension, both as Blender writes
-// them (io_export_pc2.py, io_shape_mdd/export_mdd.py):
+// files"). The PC2 and MDD bytes are decoded in core (core/io/point_cache_file.h,
+// which says what each format holds); here they become a reference:
 //
-//  - PC2, little-endian: char[12] "POINTCACHE2\0", int32 version 1, int32
-//    vertex count, float32 start frame, float32 sampling (frames per sample),
-//    int32 sample count, then float32 x y z per vertex per sample. Object
-//    space, Y-up by default (the exporter's "Convert to Y-up"). It stores no
-//    frame rate: sample k is at options.start + k * sampling / options.fps.
-//  - MDD, big-endian: int32 frame count, int32 vertex count, float32 time (s)
-//    per frame, then float32 x y z per vertex per frame. World space, Z-up
-//    (Blender's y/z flip is commented out). Frame k is at options.start + its
-//    time; the file's times win over options.fps.
+//  - PC2 stores no frame rate: sample k is at options.start + k * sampling /
+//    options.fps.
+//  - MDD has its times: frame k is at options.start + its time; the file's
+//    times win over options.fps.
 //
 // The cache alone does not say which scene node a vertex is, nor which way is
 // up: the mesh it deforms (an OBJ, options.mesh) and the scene's positions
@@ -22,15 +17,10 @@
 #include <vector>
 
 #include "core/base/vec3.h"
+#include "core/io/point_cache_file.h"
 #include "learn/motion/reference_motion.h"
 
 namespace neurocloth {
-
-enum class PointCacheFormat { pc2, mdd };
-
-// A cache's format by the extension of `path` (.pc2, .mdd, any case); false
-// when it is neither.
-bool point_cache_format(const std::string& path, PointCacheFormat& format);
 
 // The cache as written: every vertex at every frame in the file's order and
 // axes (Source::cache, nodes 0 to n - 1), strictly increasing times >= 0.

@@ -1,6 +1,7 @@
-// What the renderer is given of a scene (frame_snapshot.h): here, the coarse
+// What the renderer is given of a scene (frame_snapshot.h): the coarse
 // triangles a large grid is also drawn with, on grids whose rows and columns
-// differ (tests/render/renderer_test.cpp draws them, on square grids).
+// differ (tests/render/renderer_test.cpp draws them, on square grids), and
+// where the colliders are at the snapshot's moment.
 #include "core/scene/frame_snapshot.h"
 
 #include <gtest/gtest.h>
@@ -13,8 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/modules/collider_motion.h"
 #include "core/scene/scene.h"
 #include "support/scene_builder.h"
+#include "support/test_support.h"
+#include "support/triangle_meshes.h"
 
 namespace neurocloth {
 namespace {
@@ -102,6 +106,81 @@ TEST(CoarseTriangles, NoneForAGridUpToTheirSize) {
                   ->coarse_triangles.empty());
   EXPECT_FALSE(make_geometry(test::SceneBuilder(kCoarseGridFrom + 1, 7, 0.01).hanging().parse())
                    ->coarse_triangles.empty());
+}
+
+// A geometry of one collider of each kind: a still plane, a rotated box, a
+// sphere moved by keys, and a mesh deformed by two frames.
+std::shared_ptr<SceneGeometry> posed_geometry() {
+  auto g = std::make_shared<SceneGeometry>();
+  g->colliders.push_back(PlaneSpec{});
+  BoxSpec box;
+  box.center = Vec3(0, 0.5, 0);
+  box.rotate = Vec3(0, 30, 0);
+  g->colliders.push_back(box);
+  SphereSpec sphere;
+  sphere.motion.keys = {{0.0, Vec3::Zero(), Vec3::Zero()}, {1.0, Vec3(2, 0, 0), Vec3(0, 90, 0)}};
+  g->colliders.push_back(sphere);
+  auto mesh = std::make_shared<ObstacleMesh>();
+  mesh->surface = test::cube_surface(0.5);
+  mesh->frame_times = {0.0, 2.0};
+  mesh->frames = {mesh->surface.vertices, mesh->surface.vertices};
+  for (Vec3& v : mesh->frames[1])
+    v *= 2;  // grows to twice its size over 2 s
+  MeshSpec spec;
+  spec.mesh = mesh;
+  g->colliders.push_back(spec);
+  return g;
+}
+
+TEST(ColliderPlacements, EachColliderWhereItsDeclarationPutsItAtTheTime) {
+  const auto g = posed_geometry();
+  std::vector<FrameSnapshot::ColliderPlacement> at;
+  place_colliders(g.get(), 0.5, at);
+  ASSERT_EQ(at.size(), 4u);
+  EXPECT_TRUE(at[0].pose.identity());
+  for (std::size_t i = 1; i < 3; ++i) {
+    const RigidPose expected = collider_pose(g->colliders[i], 0.5);
+    EXPECT_EQ(at[i].pose.rotation, expected.rotation) << i;
+    EXPECT_EQ(at[i].pose.translation, expected.translation) << i;
+    EXPECT_TRUE(at[i].vertices.empty()) << i;
+  }
+  EXPECT_LT((at[2].pose.translation - Vec3(1, 0, 0)).norm(), 1e-12);  // half way
+  // The mesh at a quarter of its growth: 1.25 times its size, as floats.
+  const std::vector<Vec3>& rest = std::get<MeshSpec>(g->colliders[3]).mesh->surface.vertices;
+  ASSERT_EQ(at[3].vertices.size(), 3 * rest.size());
+  for (std::size_t v = 0; v < rest.size(); ++v)
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(at[3].vertices[3 * v + std::size_t(d)], float(1.25 * rest[v][d])) << v;
+  place_colliders(nullptr, 0.5, at);
+  EXPECT_TRUE(at.empty());
+}
+
+// Placed again at another time, nothing is reallocated.
+TEST(ColliderPlacements, AFrameAllocatesNothingOnceSized) {
+  const auto g = posed_geometry();
+  std::vector<FrameSnapshot::ColliderPlacement> at;
+  place_colliders(g.get(), 0.25, at);
+  const FrameSnapshot::ColliderPlacement* list = at.data();
+  const float* vertices = at[3].vertices.data();
+  const float first = at[3].vertices[0];
+  place_colliders(g.get(), 1.5, at);
+  EXPECT_EQ(at.data(), list);
+  EXPECT_EQ(at[3].vertices.data(), vertices);
+  EXPECT_NE(at[3].vertices[0], first);
+}
+
+// capture() places the snapshot's own geometry's colliders at the run's time.
+TEST(ColliderPlacements, CaptureFillsThemForTheSnapshotsGeometry) {
+  const Scene scene = test::asset_scene("sphere_drop");
+  Simulation sim = scene.make_simulation();
+  FrameSnapshot s;
+  capture(sim, s);
+  EXPECT_TRUE(s.colliders.empty());  // no geometry, nothing to place
+  s.geometry = make_geometry(scene);
+  capture(sim, s);
+  ASSERT_EQ(s.colliders.size(), s.geometry->colliders.size());
+  for (const auto& c : s.colliders)
+    EXPECT_TRUE(c.pose.identity());
 }
 
 }  // namespace

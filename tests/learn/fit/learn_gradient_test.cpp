@@ -12,7 +12,9 @@
 #include "learn/fit/rollout.h"
 #include "support/by_kernel.h"
 #include "support/gradient_check.h"
+#include "support/obstacle_objs.h"
 #include "support/scene_builder.h"
+#include "support/scratch_dir.h"
 
 namespace neurocloth {
 namespace {
@@ -229,6 +231,42 @@ TEST(LearnGradient, OverASphereAndABoxEdge) {
   const Scene scene = b.parse();
   FitSettings s;
   s.params = {"spring_constant", "viscosity", "friction", "box.friction"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
+// A mesh obstacle (an icosphere: its faces, edges and vertices, no sharp
+// edges) with its own friction, beside the material's.
+TEST(LearnGradient, OverAMeshSphere) {
+  const std::string obj = test::scratch_path("sphere.obj");
+  test::write_icosphere_obj(obj, Vec3(0, 0, 0), 0.1, 2);
+  SceneBuilder b(5, 5, 0.04);
+  b.origin(Vec3(-0.08, 0.13, -0.08)).material(60.0, 0.01, 0.05).friction(0.2);
+  b.solver("network", 0.002);
+  b.module({{"type", "mesh"}, {"obj", obj}, {"friction", 0.4}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "mesh.friction"};
+  FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
+  expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
+}
+
+// A box turned and carried sideways under the cloth: contact in its moving
+// frame, friction relative to its surface.
+TEST(LearnGradient, OnARotatedMovingBox) {
+  SceneBuilder b(5, 5, 0.04);
+  b.origin(Vec3(-0.08, 0.12, -0.08)).material(60.0, 0.01, 0.05).friction(0.3);
+  b.solver("network", 0.002);
+  b.module({{"type", "box"},
+            {"center", {0.0, 0.0, 0.0}},
+            {"size", {0.4, 0.2, 0.4}},
+            {"rotate", {0, 0, 8}},
+            {"motion",
+             {{{"t", 0.0}, {"translate", {0, 0, 0}}},
+              {{"t", 0.3}, {"translate", {0.05, 0.01, 0}}, {"rotate", {0, 10, 0}}}}}});
+  const Scene scene = b.parse();
+  FitSettings s;
+  s.params = {"spring_constant", "viscosity", "friction"};
   FitProblem p(scene, scattered_reference(scene, 0.3, 5), s);
   expect_exact_gradient(p, all_of(p), Eigen::VectorXd(), 1e-5);
 }

@@ -1,11 +1,15 @@
 // Collider meshes: every vertex on the solid's surface, normals pointing out,
 // and triangles wound counter-clockwise seen from outside (so that the
-// renderer's front side is the outside).
-#include "render/collider_meshes.h"
+// renderer's front side is the outside); a mesh obstacle's normals smooth
+// where it is smooth and split at its creases.
+#include "core/scene/collider_tessellation.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+
+#include "support/triangle_meshes.h"
 
 namespace neurocloth {
 namespace {
@@ -38,7 +42,7 @@ double check_winding(const SurfaceMesh& m) {
   return area;
 }
 
-TEST(ColliderMeshes, ABoxHasSixFlatFacesOnItsSurface) {
+TEST(ColliderTessellation, ABoxHasSixFlatFacesOnItsSurface) {
   BoxSpec box;
   box.center = Vec3(0, 0.375, 0);
   box.half_extents = Vec3(0.4, 0.375, 0.4);
@@ -58,7 +62,7 @@ TEST(ColliderMeshes, ABoxHasSixFlatFacesOnItsSurface) {
   }
 }
 
-TEST(ColliderMeshes, ASphereLiesAtItsRadiusWithRadialNormals) {
+TEST(ColliderTessellation, ASphereLiesAtItsRadiusWithRadialNormals) {
   SphereSpec sphere;
   sphere.center = Vec3(1, 2, 3);
   sphere.radius = 0.3;
@@ -73,7 +77,7 @@ TEST(ColliderMeshes, ASphereLiesAtItsRadiusWithRadialNormals) {
   }
 }
 
-TEST(ColliderMeshes, ACapsuleLiesAtItsRadiusFromItsSegment) {
+TEST(ColliderTessellation, ACapsuleLiesAtItsRadiusFromItsSegment) {
   CapsuleSpec capsule;
   capsule.a = Vec3(-0.5, 0.2, 0.1);
   capsule.b = Vec3(0.5, 0.4, -0.3);
@@ -94,7 +98,7 @@ TEST(ColliderMeshes, ACapsuleLiesAtItsRadiusFromItsSegment) {
   }
 }
 
-TEST(ColliderMeshes, APlaneIsASquareAroundTheSceneOnThePlane) {
+TEST(ColliderTessellation, APlaneIsASquareAroundTheSceneOnThePlane) {
   PlaneSpec plane;
   plane.point = Vec3(0, -0.2, 0);
   plane.normal = Vec3(0, 1, 0);
@@ -110,15 +114,85 @@ TEST(ColliderMeshes, APlaneIsASquareAroundTheSceneOnThePlane) {
   EXPECT_LT((centre - Vec3(3, -0.2, -1)).norm(), 1e-5);
 }
 
-TEST(ColliderMeshes, OnlyCollidersBecomeMeshes) {
-  const std::vector<ModuleSpec> specs = {AirDragSpec{}, BoxSpec{}, WindSpec{}, SphereSpec{}};
-  const SurfaceMesh m = collider_mesh(specs, Vec3::Zero(), 5);
+TEST(ColliderTessellation, OnlyCollidersBecomeMeshes) {
+  SurfaceMesh m;
+  for (const ModuleSpec& spec : {ModuleSpec(AirDragSpec{}), ModuleSpec(BoxSpec{}),
+                                 ModuleSpec(WindSpec{}), ModuleSpec(SphereSpec{})})
+    append_collider(spec, Vec3::Zero(), 5, m);
   SurfaceMesh expected;
   append_box(BoxSpec{}, expected);
   append_sphere(SphereSpec{}, expected);
   EXPECT_EQ(m.index, expected.index);
   EXPECT_EQ(m.position, expected.position);
-  EXPECT_TRUE(collider_mesh({}, Vec3::Zero(), 5).index.empty());
+  EXPECT_TRUE(m.source.empty());
+}
+
+// A box's shape frame is the box as declared: its rotation is its pose's
+// (collider_pose), not its mesh's.
+TEST(ColliderTessellation, ARotatedBoxIsTessellatedAxisAligned) {
+  BoxSpec box;
+  box.rotate = Vec3(0, 30, 0);
+  SurfaceMesh rotated, plain;
+  append_collider(box, Vec3::Zero(), 5, rotated);
+  append_box(BoxSpec{}, plain);
+  EXPECT_EQ(rotated.position, plain.position);
+}
+
+std::shared_ptr<ObstacleMesh> obstacle(TriangleSurface surface) {
+  auto mesh = std::make_shared<ObstacleMesh>();
+  mesh->surface = std::move(surface);
+  return mesh;
+}
+
+// A cube of 12 triangles: every edge is a 90 degree crease, so each corner is
+// split into its three faces' vertices and every face is flat.
+TEST(ColliderTessellation, AMeshBoxShowsFlatFaces) {
+  const auto cube = obstacle(test::cube_surface(0.5));
+  SurfaceMesh m;
+  append_obstacle(*cube, m);
+  EXPECT_EQ(m.index.size(), 36u);
+  EXPECT_EQ(m.vertex_count(), 24u);
+  ASSERT_EQ(m.source.size(), 24u);
+  EXPECT_NEAR(check_winding(m), 6.0, 1e-9);
+  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+    EXPECT_EQ(vertex(m, i), cube->surface.vertices[std::size_t(m.source[i])]);
+    // An axis: the normal of one face, not a corner's average.
+    EXPECT_NEAR(normal(m, i).cwiseAbs().maxCoeff(), 1, 1e-6) << i;
+  }
+}
+
+// An icosphere is smooth everywhere: one vertex each, normals nearly radial.
+TEST(ColliderTessellation, AMeshSphereIsSmoothShaded) {
+  const auto ball = obstacle(test::icosphere(3, 0.4));
+  SurfaceMesh m;
+  MeshSpec spec;
+  spec.mesh = ball;
+  append_collider(spec, Vec3::Zero(), 5, m);
+  EXPECT_EQ(m.vertex_count(), ball->surface.vertices.size());
+  EXPECT_EQ(m.index.size(), 3 * ball->surface.triangles.size());
+  check_winding(m);
+  for (std::size_t i = 0; i < m.vertex_count(); ++i)
+    EXPECT_GT(vertex(m, i).normalized().dot(normal(m, i)), 0.999) << i;
+}
+
+// After the vertices move (a deforming obstacle), the normals follow them and
+// a crease's split vertices keep their own sides.
+TEST(ColliderTessellation, NormalsAreRecomputedFromMovedVertices) {
+  const auto cube = obstacle(test::cube_surface(0.5));
+  SurfaceMesh m;
+  append_obstacle(*cube, m);
+  const std::vector<float> before = m.normal;
+  // Turned a quarter about z: x -> y, y -> -x.
+  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+    const Vec3 p = vertex(m, i);
+    m.position[3 * i] = float(-p.y());
+    m.position[3 * i + 1] = float(p.x());
+  }
+  recompute_normals(m);
+  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+    const Vec3 n0(before[3 * i], before[3 * i + 1], before[3 * i + 2]);
+    EXPECT_LT((normal(m, i) - Vec3(-n0.y(), n0.x(), n0.z())).norm(), 1e-6) << i;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
-#include "render/collider_meshes.h"
+#include "core/scene/collider_tessellation.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <type_traits>
 
 #include "core/base/vec3.h"
@@ -119,21 +122,103 @@ void append_plane(const PlaneSpec& plane, const Vec3& centre, double half_size, 
   mesh.add_triangle(a, d, e);
 }
 
-SurfaceMesh collider_mesh(const std::vector<ModuleSpec>& colliders, const Vec3& centre,
-                          double plane_half_size) {
-  SurfaceMesh mesh;
-  for (const ModuleSpec& spec : colliders)
-    std::visit(
-        [&](const auto& s) {
-          using T = std::decay_t<decltype(s)>;
-          if constexpr (std::is_same_v<T, PlaneSpec>)
-            append_plane(s, centre, plane_half_size, mesh);
-          if constexpr (std::is_same_v<T, BoxSpec>) append_box(s, mesh);
-          if constexpr (std::is_same_v<T, SphereSpec>) append_sphere(s, mesh);
-          if constexpr (std::is_same_v<T, CapsuleSpec>) append_capsule(s, mesh);
-        },
-        spec);
-  return mesh;
+void append_obstacle(const ObstacleMesh& obstacle, SurfaceMesh& mesh, double crease_degrees) {
+  const TriangleSurface& surface = obstacle.surface;
+  const std::size_t nv = surface.vertices.size(), nt = surface.triangles.size();
+  // Area-weighted face normals (the cross product's length is twice the area).
+  std::vector<Vec3> face(nt);
+  for (std::size_t f = 0; f < nt; ++f) {
+    const auto& t = surface.triangles[f];
+    const Vec3& a = surface.vertices[std::size_t(t[0])];
+    face[f] =
+        (surface.vertices[std::size_t(t[1])] - a).cross(surface.vertices[std::size_t(t[2])] - a);
+  }
+  // Each vertex's triangles (compressed rows).
+  std::vector<std::size_t> first(nv + 1, 0), around(3 * nt);
+  for (const auto& t : surface.triangles)
+    for (const std::int32_t v : t)
+      ++first[std::size_t(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v)
+    first[v + 1] += first[v];
+  std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t f = 0; f < nt; ++f)
+    for (const std::int32_t v : surface.triangles[f])
+      around[fill[std::size_t(v)]++] = f;
+
+  // A corner's normal sums the triangles around its vertex that are within
+  // the crease angle of its own triangle (all of them on a smooth surface; a
+  // degenerate triangle takes all). Corners of a vertex whose sets are the
+  // same share one vertex of the mesh.
+  const double cos_crease = std::cos(crease_degrees * kPi / 180.0);
+  std::vector<std::array<std::uint32_t, 3>> corner(nt);
+  std::map<std::vector<std::size_t>, std::uint32_t> made;  // one vertex's groups, reused
+  std::vector<std::size_t> group;
+  for (std::size_t v = 0; v < nv; ++v) {
+    made.clear();
+    for (std::size_t i = first[v]; i < first[v + 1]; ++i) {
+      const std::size_t f = around[i];
+      const double len_f = face[f].norm();
+      group.clear();
+      Vec3 sum = Vec3::Zero();
+      for (std::size_t j = first[v]; j < first[v + 1]; ++j) {
+        const std::size_t g = around[j];
+        const double len_g = face[g].norm();
+        if (len_f > 0 && len_g > 0 && face[f].dot(face[g]) < cos_crease * len_f * len_g) continue;
+        group.push_back(g);
+        sum += face[g];
+      }
+      auto [it, fresh] = made.emplace(group, 0);
+      if (fresh) {
+        const double len = sum.norm();
+        it->second =
+            mesh.add_vertex(surface.vertices[v], len > 0 ? Vec3(sum / len) : Vec3(Vec3::UnitY()));
+        mesh.source.push_back(std::int32_t(v));
+      }
+      const auto& t = surface.triangles[f];
+      for (int k = 0; k < 3; ++k)
+        if (std::size_t(t[std::size_t(k)]) == v) corner[f][std::size_t(k)] = it->second;
+    }
+  }
+  for (const auto& c : corner)
+    mesh.add_triangle(c[0], c[1], c[2]);
+}
+
+void append_collider(const ModuleSpec& collider, const Vec3& centre, double plane_half_size,
+                     SurfaceMesh& mesh) {
+  std::visit(
+      [&](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, PlaneSpec>)
+          append_plane(s, centre, plane_half_size, mesh);
+        else if constexpr (std::is_same_v<T, BoxSpec>)
+          append_box(s, mesh);
+        else if constexpr (std::is_same_v<T, SphereSpec>)
+          append_sphere(s, mesh);
+        else if constexpr (std::is_same_v<T, CapsuleSpec>)
+          append_capsule(s, mesh);
+        else if constexpr (std::is_same_v<T, MeshSpec>) {
+          if (s.mesh) append_obstacle(*s.mesh, mesh);
+        }
+      },
+      collider);
+}
+
+void recompute_normals(SurfaceMesh& mesh) {
+  std::fill(mesh.normal.begin(), mesh.normal.end(), 0.0f);
+  for (std::size_t t = 0; t + 2 < mesh.index.size(); t += 3) {
+    const std::uint32_t i[3] = {mesh.index[t], mesh.index[t + 1], mesh.index[t + 2]};
+    const Vec3 a = mesh.vertex(i[0]);
+    const Vec3 n = (mesh.vertex(i[1]) - a).cross(mesh.vertex(i[2]) - a);
+    for (const std::uint32_t v : i)
+      for (int d = 0; d < 3; ++d)
+        mesh.normal[3 * v + std::size_t(d)] += float(n[d]);
+  }
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    float* n = &mesh.normal[3 * v];
+    const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < 3; ++d)
+      n[d] = len > 0 ? n[d] / len : (d == 1 ? 1.0f : 0.0f);
+  }
 }
 
 }  // namespace neurocloth
