@@ -215,7 +215,8 @@ TEST(MovingObstacle, NodesStayOutsideARotatedBox) {
             {"rotate", {0, 0, 30}},
             {"thickness", kThickness}});
   Simulation sim = b.parse().make_simulation();
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(30 * kPi / 180, Vec3::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(30 * std::acos(-1.0) / 180, Vec3::UnitZ()).toRotationMatrix();
   double least = INFINITY;
   for (int k = 0; k < 40; ++k) {
     ASSERT_EQ(sim.advance(0.025), RunStatus::ok);
