@@ -59,11 +59,11 @@ class Collider final : public ConstraintModule {
     double* friction_slot = params ? &params[module_slot(ModuleParameter::friction, -1)] : nullptr;
     if (!posed_)
       return contact_response::collide_nodes_adjoint(shape_, spec_, nullptr, net, span, before,
-                                                     after, adj, adj_before, adj_friction, params,
+                                                     after, adj, adj_before, adj_friction,
                                                      friction_slot);
     const ColliderFrame frame = contact_response::frame_over(declared_, span);
     contact_response::collide_nodes_adjoint(shape_, spec_, &frame, net, span, before, after, adj,
-                                            adj_before, adj_friction, params, friction_slot);
+                                            adj_before, adj_friction, friction_slot);
   }
 
  private:

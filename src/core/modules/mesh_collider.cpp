@@ -221,7 +221,7 @@ class MeshCollider final : public ConstraintModule {
     const ColliderFrame frame = contact_response::frame_over(declared_, span);
     contact_response::collide_nodes_adjoint(shape, spec_.contact, posed_ ? &frame : nullptr, net,
                                             span, before, after, adj, adj_before, adj_friction,
-                                            params, friction_slot);
+                                            friction_slot);
   }
 
  private:

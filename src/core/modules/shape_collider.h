@@ -249,12 +249,11 @@ template <class Shape>
 void collide_nodes_adjoint(const Shape& shape, const ContactSpec& spec, const ColliderFrame* frame,
                            const ClothNetwork& net, const StepSpan& span, const StepStart& before,
                            const ClothState& after, ClothState& adj, NodeVectors& adj_before,
-                           double* adj_friction, double* params, double* friction_slot) {
+                           double* adj_friction, double* friction_slot) {
   const double reach = spec.thickness + kTouch;
   const Mat3 turn = frame ? frame->end.rotation : Mat3::Identity();
   const Mat3 turn_start = frame ? frame->start.rotation : Mat3::Identity();
   const Mat3 dw = frame ? frame->surface_velocity_jacobian() : Mat3::Zero();
-  (void)params;
   for (std::size_t i = 0; i < after.size(); ++i) {
     if (net.masses.free[i] == 0.0) continue;
     const Vec3 world_p = after.position(i);
