@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/io/asset_paths.h"
+#include "support/posted_commands.h"
 #include "support/scratch_dir.h"
 #include "support/test_support.h"
 #include "ui/ui_requests.h"
@@ -17,17 +18,10 @@
 namespace neurocloth {
 namespace {
 
-struct Posted {
-  std::vector<SimCommand> commands;
-  CommandSink sink() {
-    return [this](SimCommand c) { commands.push_back(std::move(c)); };
-  }
-};
-
 TEST(SceneObstacle, AnObjIsAddedAsAMeshColliderAndTheSceneStartsOver) {
   const Scene running = test::asset_scene("hanging");
   SceneInfo info(running);
-  Posted posted;
+  test::PostedCommands posted;
   const std::string obj = assets_directory() + "/meshes/box12.obj";
   EXPECT_EQ(request_obstacle(running, info, obj, 0.5, Vec3(0.5, 0.3, 0.5), posted.sink()), "");
   ASSERT_EQ(posted.commands.size(), 1u);
@@ -62,7 +56,7 @@ TEST(SceneObstacle, ARelativePathIsTheWorkingDirectorys) {
   std::filesystem::current_path(dir);
   const Scene running = test::asset_scene("hanging");
   SceneInfo info(running);
-  Posted posted;
+  test::PostedCommands posted;
   const std::string error =
       request_obstacle(running, info, "here.obj", 1, Vec3::Zero(), posted.sink());
   std::filesystem::current_path(before);
@@ -75,7 +69,7 @@ TEST(SceneObstacle, ABadFileIsRefusedWithTheReadersMessageAndNothingPosted) {
   SceneInfo info(running);
   const std::size_t names = info.names().modules.size();
   const std::filesystem::path dir = test::scratch_dir();
-  Posted posted;
+  test::PostedCommands posted;
 
   std::string error = request_obstacle(running, info, (dir / "missing.obj").string(), 1,
                                        Vec3::Zero(), posted.sink());

@@ -7,19 +7,13 @@
 #include <vector>
 
 #include "core/io/asset_paths.h"
+#include "support/posted_commands.h"
 #include "support/scratch_dir.h"
 #include "support/test_support.h"
 #include "ui/ui_requests.h"
 
 namespace neurocloth {
 namespace {
-
-struct Posted {
-  std::vector<SimCommand> commands;
-  CommandSink sink() {
-    return [this](SimCommand c) { commands.push_back(std::move(c)); };
-  }
-};
 
 std::string scene_asset(const std::string& name) {
   return assets_directory() + "/scenes/" + name + ".json";
@@ -28,7 +22,7 @@ std::string scene_asset(const std::string& name) {
 TEST(UiRequests, AValueInRangeIsPostedAndMirrored) {
   const SceneInfo scene(load_scene(scene_asset("table_drape")));
   UiValues values;
-  Posted posted;
+  test::PostedCommands posted;
   EXPECT_EQ(request_parameter(scene, values, posted.sink(), "viscosity", 0.5), "");
   ASSERT_EQ(posted.commands.size(), 1u);
   const auto& set = std::get<SetParameter>(posted.commands[0]);
@@ -41,7 +35,7 @@ TEST(UiRequests, AValueOutOfRangeIsRefusedWithItsRange) {
   const SceneInfo scene(load_scene(scene_asset("table_drape")));
   UiValues values;
   values.viscosity = 0.8;
-  Posted posted;
+  test::PostedCommands posted;
   const std::string refusal = request_parameter(scene, values, posted.sink(), "viscosity", -3);
   const ParameterRange* range = scene.range(ParameterId::of(ParameterId::Kind::viscosity));
   ASSERT_NE(range, nullptr);
@@ -54,7 +48,7 @@ TEST(UiRequests, AValueOutOfRangeIsRefusedWithItsRange) {
 TEST(UiRequests, AnUnknownParameterNamesTheKnownOnes) {
   const SceneInfo scene(load_scene(scene_asset("table_drape")));
   UiValues values;
-  Posted posted;
+  test::PostedCommands posted;
   const std::string refusal = request_parameter(scene, values, posted.sink(), "wind.velocity.x", 1);
   EXPECT_NE(refusal.find("unknown parameter 'wind.velocity.x'"), std::string::npos) << refusal;
   EXPECT_NE(refusal.find("viscosity"), std::string::npos) << refusal;
@@ -62,7 +56,7 @@ TEST(UiRequests, AnUnknownParameterNamesTheKnownOnes) {
 }
 
 TEST(UiRequests, ABadSceneIsNamedAndNotPosted) {
-  Posted posted;
+  test::PostedCommands posted;
   const std::string error = request_scene("/nonexistent/scene.json", posted.sink());
   EXPECT_NE(error.find("/nonexistent/scene.json"), std::string::npos) << error;
   EXPECT_TRUE(posted.commands.empty());
@@ -77,7 +71,7 @@ TEST(UiRequests, ABadSceneIsNamedAndNotPosted) {
 
 TEST(UiRequests, RulesNeedALinguisticMaterial) {
   SceneInfo numeric(load_scene(scene_asset("hanging")));
-  Posted posted;
+  test::PostedCommands posted;
   EXPECT_NE(request_rules(numeric, assets_directory() + "/materials/cloth.fcl", posted.sink()), "");
   EXPECT_TRUE(posted.commands.empty());
 
@@ -106,7 +100,7 @@ TEST(UiRequests, TheUiSharesTheScenesRuleBase) {
   EXPECT_EQ(info.fuzzy()->rules(), scene.fuzzy_material->rules);
   UiValues values;
   values.inputs = {{"mass", 0.2}};
-  Posted posted;
+  test::PostedCommands posted;
   EXPECT_EQ(request_parameter(info, values, posted.sink(), "input.mass", 0.7), "");
   EXPECT_EQ(values.inputs[0].second, 0.7);
   EXPECT_GT(info.node_mass(0, values.inputs), 0);
