@@ -48,6 +48,11 @@ Bounds snapshot_bounds(const FrameSnapshot& s) {
           } else if constexpr (std::is_same_v<T, CapsuleSpec>) {
             add_ball(c.a, c.radius);
             add_ball(c.b, c.radius);
+          } else if constexpr (std::is_same_v<T, CylinderSpec>) {
+            // Its two end discs lie within these balls.
+            const Vec3 half = 0.5 * c.height * c.axis.normalized();
+            add_ball(c.center + half, c.radius);
+            add_ball(c.center - half, c.radius);
           } else if constexpr (std::is_same_v<T, MeshSpec>) {
             if (!c.mesh) return;
             const std::vector<float>& deformed =

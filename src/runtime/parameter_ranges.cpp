@@ -43,6 +43,7 @@ std::vector<ParameterRange> parameter_ranges(const Scene& scene) {
           case ModuleParameter::drag:
           case ModuleParameter::lift:
           case ModuleParameter::friction:
+          case ModuleParameter::rigidity:
             continue;
         }
         break;

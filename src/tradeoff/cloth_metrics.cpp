@@ -78,23 +78,8 @@ MetricContext metric_context(const Scene& scene) {
     c.edges.push_back({s.a, s.b});
     c.rest.push_back(l0);
   }
-  c.support = drape_support(scene);
-  if (c.support && !c.triangles.empty()) {
-    const ClothState start = scene.initial_state();
-    std::vector<double> flat(3 * c.nodes);
-    for (std::size_t i = 0; i < c.nodes; ++i)
-      for (int d = 0; d < 3; ++d)
-        flat[3 * i + static_cast<std::size_t>(d)] = start.position(i)[d];
-    try {
-      c.drape =
-          std::make_shared<const DrapeMeter>(*c.support, flat.data(), c.nodes, c.triangles, c.size);
-    } catch (const std::invalid_argument&) {
-      // A cloth already inside its support's shadow has no drape coefficient.
-      c.support.reset();
-    }
-  } else {
-    c.support.reset();
-  }
+  c.drape = scene_drape_meter(scene);
+  if (c.drape) c.support = c.drape->support();
   return c;
 }
 

@@ -2,17 +2,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <variant>
 
+#include "tradeoff/run_error.h"
+
 namespace neurocloth {
+
+namespace {
+
+// Whether the line p + t up meets the cylinder: the t where it is between the
+// ends' planes and those where it is within the radius of the axis overlap.
+bool line_meets_cylinder(const DrapeSupport& s, const Vec3& p) {
+  const Vec3 d = p - s.center;
+  double t0 = -std::numeric_limits<double>::infinity();
+  double t1 = std::numeric_limits<double>::infinity();
+  const double half = 0.5 * s.height, along = d.dot(s.axis), rate = s.up.dot(s.axis);
+  if (std::abs(rate) < 1e-12) {
+    if (std::abs(along) > half) return false;
+  } else {
+    double a = (-half - along) / rate, b = (half - along) / rate;
+    if (a > b) std::swap(a, b);
+    t0 = a;
+    t1 = b;
+  }
+  // |q + t w|^2 <= r^2, q and w the parts of d and up across the axis.
+  const Vec3 q = d - along * s.axis, w = s.up - rate * s.axis;
+  const double aa = w.squaredNorm(), bb = q.dot(w), cc = q.squaredNorm() - s.radius * s.radius;
+  if (aa < 1e-24) return cc <= 0 && t0 <= t1;  // up along the axis: the end disc's footprint
+  const double disc = bb * bb - aa * cc;
+  if (disc < 0) return false;
+  const double root = std::sqrt(disc);
+  return std::max(t0, (-bb - root) / aa) <= std::min(t1, (-bb + root) / aa);
+}
+
+}  // namespace
 
 bool DrapeSupport::covers(const Vec3& p) const {
   if (shape == Shape::sphere) {
     const Vec3 d = center - p;
     return (d - d.dot(up) * up).norm() <= radius;
   }
+  if (shape == Shape::cylinder) return line_meets_cylinder(*this, p);
   // The line p + t up against the box's three slabs.
   double t0 = -std::numeric_limits<double>::infinity();
   double t1 = std::numeric_limits<double>::infinity();
@@ -37,7 +70,15 @@ void horizontal_axes(const Vec3& up, Vec3& u, Vec3& w) {
 }
 
 const char* to_string(DrapeSupport::Shape shape) {
-  return shape == DrapeSupport::Shape::box ? "box" : "sphere";
+  switch (shape) {
+    case DrapeSupport::Shape::box:
+      return "box";
+    case DrapeSupport::Shape::sphere:
+      return "sphere";
+    case DrapeSupport::Shape::cylinder:
+      return "cylinder";
+  }
+  return "?";
 }
 
 std::optional<DrapeSupport> drape_support(const Scene& scene) {
@@ -55,6 +96,14 @@ std::optional<DrapeSupport> drape_support(const Scene& scene) {
       s.shape = DrapeSupport::Shape::sphere;
       s.center = sphere->center;
       s.radius = sphere->radius;
+      return s;
+    }
+    if (const auto* cylinder = std::get_if<CylinderSpec>(&m.spec)) {
+      s.shape = DrapeSupport::Shape::cylinder;
+      s.center = cylinder->center;
+      s.axis = cylinder->axis.normalized();
+      s.radius = cylinder->radius;
+      s.height = cylinder->height;
       return s;
     }
   }
@@ -125,6 +174,26 @@ DrapeShape DrapeMeter::measure(const double* x) const {
   d.coefficient = s.outside_area / flat_outside_;
   d.folds = s.folds;
   return d;
+}
+
+DrapeShape DrapeMeter::measure(const ClothState& state) const {
+  if (state.size() != nodes_)
+    throw std::invalid_argument("DrapeMeter::measure: the state has another node count");
+  std::vector<double> x(3 * nodes_);
+  for (std::size_t i = 0; i < nodes_; ++i) {
+    x[3 * i] = state.x[i];
+    x[3 * i + 1] = state.y[i];
+    x[3 * i + 2] = state.z[i];
+  }
+  return measure(x.data());
+}
+
+std::string describe(const DrapeShape& drape, const DrapeSupport& support) {
+  char line[128];
+  std::snprintf(line, sizeof line, "drape coefficient %.3f, %d node%s over the %s",
+                drape.coefficient, drape.folds, drape.folds == 1 ? "" : "s",
+                to_string(support.shape));
+  return line;
 }
 
 DrapeMeter::Shadow DrapeMeter::shadow(const double* x) const {
@@ -221,6 +290,24 @@ DrapeMeter::Shadow DrapeMeter::shadow(const double* x) const {
   }
   out.folds = count_peaks(smooth, kFoldProminence * size_);
   return out;
+}
+
+std::shared_ptr<const DrapeMeter> scene_drape_meter(const Scene& scene) {
+  const std::optional<DrapeSupport> support = drape_support(scene);
+  const Triangles& triangles = scene.topology.triangles;
+  if (!support || triangles.empty()) return nullptr;
+  const ClothState start = scene.initial_state();
+  std::vector<double> flat(3 * start.size());
+  for (std::size_t i = 0; i < start.size(); ++i)
+    for (int d = 0; d < 3; ++d)
+      flat[3 * i + static_cast<std::size_t>(d)] = start.position(i)[d];
+  double size = cloth_size(start);
+  if (!(size > 0)) size = 1;  // as error_scale: a cloth without extent is measured in metres
+  try {
+    return std::make_shared<const DrapeMeter>(*support, flat.data(), start.size(), triangles, size);
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // a cloth already inside its support's shadow has no drape coefficient
+  }
 }
 
 }  // namespace neurocloth

@@ -38,8 +38,9 @@ SceneInfo::SceneInfo(const Scene& scene)
       ranges_(parameter_ranges(scene)),
       material_(scene.material),
       solver_(scene.solver),
-      trade_(load_accuracy_trade(scene.path,
-                                 scene.resized_from && scene.grid ? scene.grid->rows : 0)) {
+      trade_(
+          load_accuracy_trade(scene.path, scene.resized_from && scene.grid ? scene.grid->rows : 0)),
+      drape_(scene_drape_meter(scene)) {
   // Masses as the network has them (a rule base's node_mass is per reference
   // area, so nodes at the border carry less): built once per scene, not per drag.
   const ClothNetwork net = scene.build_network();

@@ -11,6 +11,7 @@
 #include "runtime/realtime_pick.h"
 #include "runtime/simulation_thread.h"
 #include "ui/accuracy_control.h"
+#include "ui/drape_readout.h"
 #include "ui/fuzzy_view.h"
 
 namespace neurocloth {
@@ -47,6 +48,10 @@ class SceneInfo {
   // (realtime_pick.h); cleared when the user takes the scene's own back.
   std::optional<RealtimePick> realtime_pick;
 
+  // The drape test's figures of the running cloth, when the scene has a
+  // support (inactive otherwise).
+  DrapeReadout& drape() { return drape_; }
+
   // Set for a linguistic material.
   std::optional<FuzzyView>& fuzzy() { return fuzzy_; }
   const std::optional<FuzzyView>& fuzzy() const { return fuzzy_; }
@@ -60,6 +65,7 @@ class SceneInfo {
   SolverSettings solver_;
   AccuracyTrade trade_;
   std::optional<FuzzyView> fuzzy_;
+  DrapeReadout drape_;
 };
 
 }  // namespace neurocloth

@@ -1,6 +1,6 @@
 // The Scene panel: which scene runs, loading another, adding an OBJ as an
-// obstacle, reset / pause / step, and the scene's active modules with the keys
-// they were declared with.
+// obstacle, reset / pause / step, the drape test's figures over a support, and
+// the scene's active modules with the keys they were declared with.
 #include <imgui.h>
 
 #include <array>
@@ -74,6 +74,16 @@ void scene_panel(PanelContext& ctx) {
   ImGui::Text("%s", s.scene_name.c_str());
   ImGui::TextDisabled("%s", s.scene_path.c_str());
   ImGui::TextWrapped("%s", ctx.scene.cloth_summary().c_str());
+  if (ctx.scene.drape().active()) {
+    const std::string& drape = ctx.scene.drape().line(ctx.snapshot, ImGui::GetTime());
+    if (!drape.empty()) {
+      ImGui::TextUnformatted(drape.c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "ISO 9073-9's drape coefficient (the cloth's shadow outside its support over the "
+            "flat cloth's) and its nodes (folds); docs/tradeoff.md");
+    }
+  }
   ImGui::SetNextItemWidth(280);
   ImGui::InputText("##scene", ctx.values.scene_path.data(), ctx.values.scene_path.size());
   ImGui::SameLine();

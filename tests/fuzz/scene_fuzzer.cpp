@@ -111,6 +111,15 @@ void check_module(const Contract& c, const ModuleDeclaration& d, const std::stri
           c.vector(m.b, f + ".b");
           c.finite(m.radius, f + ".radius");
           check_contact(c, m.contact, f);
+        } else if constexpr (std::is_same_v<T, CylinderSpec>) {
+          c.vector(m.center, f + ".center");
+          c.vector(m.axis, f + ".axis");
+          c.require(std::abs(m.axis.norm() - 1) < 1e-9, f + ".axis is not a unit vector");
+          c.finite(m.radius, f + ".radius");
+          c.require(m.radius > 0, f + ".radius accepted <= 0");
+          c.finite(m.height, f + ".height");
+          c.require(m.height > 0, f + ".height accepted <= 0");
+          check_contact(c, m.contact, f);
         } else if constexpr (std::is_same_v<T, AirDragSpec>) {
           c.finite(m.rate, f + ".rate");
         } else if constexpr (std::is_same_v<T, WindSpec>) {
@@ -156,16 +165,22 @@ void check_scene(const Contract& c, const Scene& s, const std::string& text) {
                                          "' twice in one object (the last silently wins)");
 }
 
-// The nodes of the grid a scene text asks for (0 when it names none). The
-// reader allows 4 million; a 1000 x 1000 grid took 5.8 s to read and check
+// The nodes of the grid or disc a scene text asks for (0 when it names none).
+// The reader allows 4 million; a 1000 x 1000 grid took 5.8 s to read and check
 // under ASan on this machine (past the 5 s timeout) and large grids run no
-// line a small grid does not, so the harness leaves grids above
+// line a small grid does not, so the harness leaves grids (and discs) above
 // kMaxFuzzedNodes alone rather than call them hangs.
 constexpr long long kMaxFuzzedNodes = 16384;  // 128 x 128
 long long grid_nodes(const std::string& text) {
   const auto doc = nlohmann::json::parse(text, nullptr, false);
   if (!doc.is_object() || !doc.contains("cloth") || !doc["cloth"].is_object()) return 0;
   const auto& cloth = doc["cloth"];
+  if (cloth.contains("disc") && cloth["disc"].is_object()) {
+    const auto& disc = cloth["disc"];
+    if (!disc.contains("rings") || !disc["rings"].is_number_integer()) return 0;
+    const long long rings = disc["rings"].get<long long>();
+    return rings > 0 && rings <= (1LL << 20) ? 1 + 3 * rings * (rings + 1) : 0;  // disc_builder.h
+  }
   if (!cloth.contains("grid") || !cloth["grid"].is_object()) return 0;
   const auto& grid = cloth["grid"];
   const auto count = [&](const char* key) -> long long {

@@ -45,6 +45,13 @@ class SceneBuilder {
     erase("/cloth/springs");
     return set("/cloth/mesh", {{"obj", obj}});
   }
+  // A disc of `rings` rings around `center` instead of the grid (a drape
+  // test's specimen), lying across +y, with its default springs.
+  SceneBuilder& disc(double radius, int rings, const Vec3& center = Vec3::Zero()) {
+    erase("/cloth/grid");
+    erase("/cloth/springs");
+    return set("/cloth/disc", {{"radius", radius}, {"rings", rings}, {"center", vec(center)}});
+  }
   SceneBuilder& springs(const std::vector<std::string>& families) {
     return set("/cloth/springs", families);
   }

@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
   compare->add_option("b", cmp.b, "RESULT.json of the same cloth")->required();
   compare->add_option("--scene", cmp.scene,
                       "The scene (its triangles, support and size); default: the results' own; "
-                      "given, it must have a box or sphere to drape over");
+                      "given, it must have a box, sphere or cylinder to drape over");
   compare->add_option("--size", cmp.size,
                       "The scene's cloth resized to N x N (default: from the node count)");
 
@@ -184,23 +184,42 @@ int main(int argc, char** argv) {
       material->add_option("--input", mat.inputs, "NAME=VALUE, one per input")->expected(1, -1);
   auto* preset =
       material->add_option("--preset", mat.preset, "A shipped preset (assets/materials/NAME.json)");
+  auto* measured = material
+                       ->add_option("--measured", mat.measured,
+                                    "A fabric (assets/materials/fabrics/NAME.json) or KEY=VALUE "
+                                    "... of material.measured: the weights it gives")
+                       ->expected(1, -1);
+  material->add_option("--spacing", mat.spacing, "Grid spacing the weights are shown for, m")
+      ->needs(measured);
   preset->excludes(rules)->excludes(inputs);
+  measured->excludes(rules)->excludes(inputs)->excludes(preset);
   rules->needs(inputs);
   material->add_flag("--json", mat.json, "Print JSON");
   material->callback([&] {
-    if (mat.rules.empty() && !mat.preset) throw CLI::RequiredError("--rules or --preset");
+    if (mat.rules.empty() && !mat.preset && mat.measured.empty())
+      throw CLI::RequiredError("--rules, --preset or --measured");
   });
 
   FitOptions fit;
   auto* fit_cmd = app.add_subcommand(
       "fit", "Fit the network's weights to a reference motion; write FITTED.json and its curves");
   fit_cmd->add_option("scene", fit.scene, "Scene file (JSON)")->required();
-  fit_cmd
-      ->add_option("--reference", fit.reference,
-                   "The motion to fit: a recording (simulate --record), a marker CSV "
-                   "(time,node,x,y,z), a point cloud (CSV time,x,y,z; a folder or a numbered "
-                   "pattern of PLY / XYZ files), or a PC2 / MDD point cache")
-      ->required();
+  auto* fit_reference =
+      fit_cmd->add_option("--reference", fit.reference,
+                          "The motion to fit: a recording (simulate --record), a marker CSV "
+                          "(time,node,x,y,z), a point cloud (CSV time,x,y,z; a folder or a "
+                          "numbered pattern of PLY / XYZ files), or a PC2 / MDD point cache");
+  auto* fit_bending_length = fit_cmd->add_option(
+      "--bending-length", fit.bending_length,
+      "Instead of a reference: a cantilever test's bending length, m (the scene a cantilever: "
+      "docs/materials.md); fit bending.rigidity to it");
+  fit_cmd->add_option("--at", fit.at, "When the cantilever is read, s (default 1)")
+      ->needs(fit_bending_length);
+  fit_bending_length->excludes(fit_reference);
+  fit_cmd->callback([&] {
+    if (fit.reference.empty() && !fit.bending_length)
+      throw CLI::RequiredError("--reference or --bending-length");
+  });
   fit_cmd->add_option("--reference-fps", fit.reference_fps,
                       "Frames per second of PLY / XYZ frames or of a PC2 cache");
   fit_cmd->add_option(
@@ -241,8 +260,10 @@ int main(int argc, char** argv) {
                       "MB the stored states may take before segments are recomputed (default 512)");
   fit_cmd->add_option("--out", fit.out, "FITTED.json (also FITTED.loss.csv, FITTED.loss.png)")
       ->required();
-  fit_cmd->add_flag("--online", fit.online,
-                    "Adapt the weights while the reference plays (truncated BPTT per window)");
+  fit_cmd
+      ->add_flag("--online", fit.online,
+                 "Adapt the weights while the reference plays (truncated BPTT per window)")
+      ->excludes(fit_bending_length);
   fit_cmd->add_option("--window", fit.window, "Online: steps per back-propagation window (50)");
   fit_cmd->add_option("--learning-rate", fit.learning_rate,
                       "Online: the largest change of one parameter per window, log units (0.05)");

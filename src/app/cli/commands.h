@@ -153,6 +153,10 @@ struct MaterialOptions {
   std::string rules;                  // --rules FILE.fcl
   std::vector<std::string> inputs;    // --input NAME=VALUE ...
   std::optional<std::string> preset;  // --preset NAME
+  // --measured NAME (a fabric, assets/materials/fabrics) or KEY=VALUE ... (the
+  // keys of a scene's material.measured): the network's weights for it.
+  std::vector<std::string> measured;
+  double spacing = 0.01;  // --spacing: the grid the weights are shown for, m
   bool json = false;
 };
 int run_material(const MaterialOptions& options);
@@ -183,7 +187,11 @@ int run_snapshot(const SnapshotOptions& options);
 // written); 1 bad input (nothing written).
 struct FitOptions {
   std::string scene;
-  std::string reference;              // --reference: a recording, a CSV, PLY/XYZ frames, a cache
+  std::string reference;  // --reference: a recording, a CSV, PLY/XYZ frames, a cache
+  // --bending-length: a cantilever test's reading instead of a reference
+  // (fabric_test_reference.h), read at --at seconds.
+  std::optional<double> bending_length;
+  double at = 1.0;
   double reference_fps = 0;           // --reference-fps: a frame sequence's or a PC2's rate
   double reference_start = 0;         // --reference-start: the first frame's time, s
   std::string reference_mesh;         // --reference-mesh: the OBJ a PC2 / MDD cache deforms

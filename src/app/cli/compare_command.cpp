@@ -99,9 +99,10 @@ int run_compare(const CompareOptions& o) {
                          (o.size ? " at --size " + std::to_string(*o.size) : std::string()));
   const MetricContext context = metric_context(scene);
   if (o.scene && !context.support)
-    throw InputError(*o.scene, "modules",
-                     "no box or sphere for the cloth to drape over (compare's --scene is for "
-                     "the support)");
+    throw InputError(
+        *o.scene, "modules",
+        "no box, sphere or cylinder for the cloth to drape over (compare's --scene is for "
+        "the support)");
   const std::vector<double> xa = node_order(a.positions, scene.topology.numbering),
                             xb = node_order(b.positions, scene.topology.numbering);
   const FrameShape sa = frame_shape(xa.data(), context), sb = frame_shape(xb.data(), context);

@@ -20,6 +20,7 @@
 #include "learn/fit/fit_problem.h"
 #include "learn/fit/fitted_output.h"
 #include "learn/fit/input_starts.h"
+#include "learn/motion/fabric_test_reference.h"
 #include "learn/motion/read_reference.h"
 #include "learn/motion/reference_motion.h"
 #include "learn/optim/global_search.h"
@@ -161,6 +162,13 @@ std::vector<ParameterUncertainty> summary_parameters(const UncertaintyReport& r,
   return out;
 }
 
+// What the fit matched, for its report and FITTED.json.
+std::string reference_name(const FitOptions& o) {
+  if (!o.bending_length) return o.reference;
+  return "cantilever bending length " + show_number(*o.bending_length) + " m at " +
+         show_number(o.at) + " s";
+}
+
 int exit_code(StopReason reason) {
   switch (reason) {
     case StopReason::stopped:
@@ -183,7 +191,8 @@ FitProblem load_fit_problem(const FitOptions& o, const Scene& scene) {
   ro.mesh = o.reference_mesh;
   ro.scene_positions = file_order_positions(scene);
   const ReferenceMotion reference =
-      read_reference(o.reference, scene.topology.rest_positions.size(), ro);
+      o.bending_length ? cantilever_reference(scene, *o.bending_length, o.at, "--bending-length")
+                       : read_reference(o.reference, scene.topology.rest_positions.size(), ro);
   if (!reference.note.empty()) std::printf("reference: %s\n", reference.note.c_str());
   FitSettings settings;
   settings.chamfer.one_sided = o.chamfer == "one-sided";
@@ -211,7 +220,7 @@ int run_fit(const FitOptions& o) {
   const std::vector<std::string> columns = block_names(problem);
   const double observations = double(problem.observations());
   std::printf("fit: %s to %s: %zu unknowns, %zu observed %s over %g s, %s\n", scene.name.c_str(),
-              o.reference.c_str(), problem.size(), problem.observations(),
+              reference_name(o).c_str(), problem.size(), problem.observations(),
               problem.fits_cloud() ? "points (Chamfer distance)" : "positions", problem.duration(),
               to_string(opt.method));
   std::fflush(stdout);
@@ -278,7 +287,7 @@ int run_fit(const FitOptions& o) {
     std::printf("in words: %s\n", w.c_str());
 
   FitSummary summary;
-  summary.reference = o.reference;
+  summary.reference = reference_name(o);
   summary.optimizer = to_string(opt.method);
   summary.stop_reason = to_string(result.reason);
   summary.stop_message = result.message;

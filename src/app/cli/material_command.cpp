@@ -10,7 +10,10 @@
 #include "core/fuzzy/formats/rule_file.h"
 #include "core/fuzzy/inference.h"
 #include "core/io/input_error.h"
+#include "core/io/json_fields.h"
 #include "core/scene/fuzzy_material.h"
+#include "core/scene/grid_builder.h"
+#include "core/scene/measured_material.h"
 
 namespace neurocloth {
 namespace {
@@ -37,9 +40,98 @@ std::map<std::string, double> parse_assignments(const std::vector<std::string>& 
   return values;
 }
 
+// --measured: a fabric's name, or KEY=VALUE pairs read as a scene's
+// material.measured would be (the same keys, limits and messages).
+MeasuredPreset measured_from(const std::vector<std::string>& items) {
+  if (items.size() == 1 && items[0].find('=') == std::string::npos)
+    return load_measured_preset(items[0]);
+  MeasuredPreset p;
+  p.name = "command line";
+  nlohmann::json v = nlohmann::json::object();
+  for (const auto& [name, value] : parse_assignments(items))
+    v[name] = value;
+  const JsonFields in(v.dump(), "command line");
+  p.measured = read_measured_material(in, in.root(), "--measured");
+  return p;
+}
+
+constexpr double kGfCm2PerCm = 9.80665e-5;  // N m in one gf cm^2/cm (KES-FB2's unit)
+constexpr double kGravity = 9.80665;
+
+int run_measured(const MaterialOptions& o) {
+  if (!(o.spacing > 0) || !limits::kSpacing.contains(o.spacing))
+    throw InputError("command line", "--spacing", limits::kSpacing.refusal(o.spacing));
+  const MeasuredPreset p = measured_from(o.measured);
+  const MeasuredMaterial& m = p.measured;
+  // A square grid with structural and shear springs (what the weights are
+  // for), and the same cloth as a mesh of equilateral-ish triangles.
+  GridSpec g;
+  g.rows = g.cols = 3;
+  g.spacing = o.spacing;
+  g.families = SpringFamilies{true, true, false};
+  const ClothTopology grid = build_grid(g);
+  std::vector<std::string> notes;
+  const Material mat = measured_constants(m, grid, &notes);
+  const double node_mass = m.areal_density * o.spacing * o.spacing;  // an interior node's
+  const double sheet = grid_tensile_stiffness(mat);
+  nlohmann::json doc;
+  doc["fabric"] = p.name;
+  if (!p.path.empty()) doc["file"] = p.path;
+  doc["measured"] = {{"areal_density", m.areal_density},
+                     {"tensile_stiffness", m.tensile_stiffness},
+                     {"shear_stiffness", m.shear()},
+                     {"damping", m.damping},
+                     {"friction", m.friction}};
+  doc["grid"] = {{"spacing", o.spacing},          {"spring_constant", mat.spring_constant},
+                 {"shear_constant", mat.shear()}, {"viscosity", mat.viscosity},
+                 {"node_mass", node_mass},        {"sheet_tensile_stiffness", sheet}};
+  doc["mesh"] = {{"edge_stiffness", "tensile_stiffness * (A1 + A2) / |e|^2"},
+                 {"shear_stiffness", 0.375 * m.tensile_stiffness}};
+  if (m.bending_rigidity) {
+    const double b = *m.bending_rigidity;
+    doc["measured"]["bending_rigidity"] = b;
+    doc["bending"] = {{"rigidity", b},
+                      {"rigidity_kes", b / kGfCm2PerCm},
+                      {"bending_length", std::cbrt(b / (m.areal_density * kGravity))}};
+  }
+  for (const auto& [key, source] : p.sources)
+    doc["sources"][key] = source;
+  if (o.json) {
+    std::printf("%s\n", doc.dump(1).c_str());
+    return kExitOk;
+  }
+  std::printf("%s%s\n", p.name.c_str(), p.path.empty() ? "" : (" (" + p.path + ")").c_str());
+  std::printf(
+      "measured: areal density %g kg/m^2, tensile %g N/m, shear %g N/m, damping %g N s/m, "
+      "friction %g\n",
+      m.areal_density, m.tensile_stiffness, m.shear(), m.damping, m.friction);
+  std::printf("on a grid of %g m (structural and shear springs, no bend springs):\n", o.spacing);
+  std::printf("  spring_constant  %.6g N/m   (the sheet's tensile stiffness: %.6g N/m)\n",
+              mat.spring_constant, sheet);
+  std::printf("  shear_constant   %.6g N/m\n", mat.shear());
+  std::printf("  viscosity        %.6g N s/m\n", mat.viscosity);
+  std::printf("  node_mass        %.6g kg (an interior node; each carries its share of area)\n",
+              node_mass);
+  std::printf(
+      "on a triangle mesh: each edge %g N/m times (A1 + A2) / |e|^2; shear follows as %g "
+      "N/m\n",
+      m.tensile_stiffness, 0.375 * m.tensile_stiffness);
+  if (m.bending_rigidity) {
+    const double b = *m.bending_rigidity;
+    std::printf("bending module: rigidity %.6g N m (%.4g gf cm^2/cm), bending length %.4g mm\n", b,
+                b / kGfCm2PerCm, 1e3 * std::cbrt(b / (m.areal_density * kGravity)));
+  } else {
+    std::printf("no bending_rigidity: the cloth does not resist bending\n");
+  }
+  for (const auto& [key, source] : p.sources)
+    std::printf("source of %s: %s\n", key.c_str(), source.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_material(const MaterialOptions& o) {
+  if (!o.measured.empty()) return run_measured(o);
   LinguisticMaterial lm;
   if (o.preset) {
     lm = load_preset(*o.preset);

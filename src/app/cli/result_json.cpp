@@ -1,5 +1,11 @@
 #include "app/cli/result_json.h"
 
+#include <cmath>
+#include <cstdio>
+
+#include "core/scene/cantilever.h"
+#include "tradeoff/drape_shape.h"
+
 namespace neurocloth {
 
 nlohmann::json state_json(const ClothState& s, const NodeNumbering& numbering, bool velocities) {
@@ -18,6 +24,39 @@ nlohmann::json energy_json(const Energy& e) {
           {"total", e.total()},
           {"spring", e.spring},
           {"gravity", e.gravity}};
+}
+
+std::vector<FabricTestReading> fabric_test_readings(const Scene& scene, const ClothState& state) {
+  std::vector<FabricTestReading> out;
+  const std::shared_ptr<const DrapeMeter> meter = scene_drape_meter(scene);
+  if (meter && meter->node_count() == state.size()) {
+    const DrapeShape d = meter->measure(state);
+    out.push_back({"drape",
+                   {{"coefficient", d.coefficient},
+                    {"nodes", d.folds},
+                    {"support", to_string(meter->support().shape)}},
+                   describe(d, meter->support())});
+  }
+  if (const auto setup = cantilever_setup(scene)) {
+    const CantileverReading r = read_cantilever(*setup, state);
+    constexpr double kDegree = 3.141592653589793 / 180;
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "cantilever: chord %.2f degrees at an overhang of %.4g mm: bending length %.4g "
+                  "mm (Peirce's formula %.4g), bending rigidity %.4g N m",
+                  r.chord_angle / kDegree, 1e3 * setup->overhang, 1e3 * r.bending_length,
+                  1e3 * r.peirce_length, r.bending_rigidity);
+    // A strip that has not dropped has no bending length: null, not NaN.
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    out.push_back({"cantilever",
+                   {{"chord_angle", number(r.chord_angle / kDegree)},
+                    {"overhang", setup->overhang},
+                    {"bending_length", number(r.bending_length)},
+                    {"peirce_length", number(r.peirce_length)},
+                    {"bending_rigidity", number(r.bending_rigidity)}},
+                   line});
+  }
+  return out;
 }
 
 nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& numbering,

@@ -4,8 +4,10 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 #include "core/io/json_writer.h"
+#include "core/scene/scene.h"
 #include "core/simulation/simulation.h"
 
 namespace neurocloth {
@@ -18,5 +20,19 @@ nlohmann::json simulation_result(const Simulation& sim, const NodeNumbering& num
 // entry k is the file's vertex k + 1 whatever order the nodes are in.
 nlohmann::json state_json(const ClothState& s, const NodeNumbering& numbering, bool velocities);
 nlohmann::json energy_json(const Energy& e);
+
+// What a fabric lab would read off `state`, for each test the scene is: the
+// drape test's (ISO 9073-9, tradeoff/drape_shape.h) when it has a support to
+// drape over, RESULT.json's "drape" {"coefficient", "nodes", "support"} (the
+// flat cloth is the scene's at its start); the cantilever's (ASTM D1388,
+// core/scene/cantilever.h) when it is one, "cantilever" {"chord_angle"
+// (degrees), "overhang", "bending_length", "peirce_length" (m),
+// "bending_rigidity" (N m)}. Each with the line that says it.
+struct FabricTestReading {
+  std::string key;  // "drape", "cantilever"
+  nlohmann::json json;
+  std::string line;
+};
+std::vector<FabricTestReading> fabric_test_readings(const Scene& scene, const ClothState& state);
 
 }  // namespace neurocloth

@@ -235,6 +235,9 @@ int run_simulate(const SimulateOptions& o) {
   const bool stopped_early =
       sim.status() == RunStatus::ok && sim.budget_exhausted() && !run.interrupted;
   result["step_budget_exhausted"] = stopped_early;
+  const std::vector<FabricTestReading> readings = fabric_test_readings(scene, sim.state());
+  for (const FabricTestReading& r : readings)
+    result[r.key] = r.json;
   std::vector<std::string> motion_lines;
   if (motion) {
     motion->keep_until(sim);
@@ -254,6 +257,8 @@ int run_simulate(const SimulateOptions& o) {
   for (const ModuleReport& m : sim.module_reports())
     std::printf("  module %-14s %8.3g s in %ld calls (%.3g us each)\n", m.type.c_str(), m.seconds,
                 m.calls, m.calls ? 1e6 * m.seconds / m.calls : 0.0);
+  for (const FabricTestReading& r : readings)
+    std::printf("  %s\n", r.line.c_str());
   if (sim.status() != RunStatus::ok)
     std::printf("  diverged: %s; kept the last good state (t = %.4g s)\n",
                 sim.divergence_reason().c_str(), sim.time());

@@ -71,7 +71,47 @@ double at_quadrant(std::int64_t q, double r) {
   }
 }
 
+// atan r for |r| <= tan(pi/12) = 0.268 by its Taylor series r - r^3/3 + ...:
+// with r^2 <= 0.0718 the 15th term is below 1e-18 of the first.
+double atan_kernel(double r) {
+  // (-1)^k / (2k + 1) for k = 14 .. 1, each the double nearest it.
+  static constexpr double kCoefficients[14] = {
+      1.0 / 29,  -1.0 / 27, 1.0 / 25,  -1.0 / 23, 1.0 / 21, -1.0 / 19, 1.0 / 17,
+      -1.0 / 15, 1.0 / 13,  -1.0 / 11, 1.0 / 9,   -1.0 / 7, 1.0 / 5,   -1.0 / 3};
+  const double z = r * r;
+  double p = 0;
+  for (const double c : kCoefficients)
+    p = p * z + c;
+  return r + r * (z * p);
+}
+
+// pi, pi/2, pi/6 and 1/sqrt(3) as a double and the rest: the sums below add
+// the rest last, so the constants cost no more than their final rounding.
+constexpr double kPiHi = 3.141592653589793, kPiLo = 1.2246467991473532e-16;
+constexpr double kHalfPiHi = 1.5707963267948966, kHalfPiLo = 6.123233995736766e-17;
+constexpr double kSixthPiHi = 0.5235987755982989, kSixthPiLo = -5.360408832255455e-17;
+constexpr double kInvSqrt3Hi = 0.5773502691896257, kInvSqrt3Lo = 3.3450280739356345e-17;
+constexpr double kTanPiOver12 = 0.2679491924311227;
+
+// atan a for 0 <= a <= 1: above tan(pi/12),
+// atan a = pi/6 + atan((a - 1/sqrt3) / (1 + a/sqrt3)).
+double atan_unit(double a) {
+  if (a <= kTanPiOver12) return atan_kernel(a);
+  const double t = ((a - kInvSqrt3Hi) - kInvSqrt3Lo) / (1.0 + a * kInvSqrt3Hi);
+  return kSixthPiHi + (atan_kernel(t) + kSixthPiLo);
+}
+
 }  // namespace
+
+double portable_atan2(double y, double x) {
+  if (!std::isfinite(x) || !std::isfinite(y)) return std::atan2(y, x);  // not a step's case
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  if (ax == 0 && ay == 0) return 0;
+  // The angle from the nearer axis, in [0, pi/4], then unfolded by octant.
+  double angle = ay <= ax ? atan_unit(ay / ax) : kHalfPiHi - (atan_unit(ax / ay) - kHalfPiLo);
+  if (x < 0) angle = (kPiHi - angle) + kPiLo;
+  return y < 0 ? -angle : angle;
+}
 
 double portable_sin(double x) {
   if (!std::isfinite(x)) return x - x;  // NaN, without the C library

@@ -1,5 +1,5 @@
 #pragma once
-// sin and cos whose bits are the same on every x86-64 CPU, for the signals a
+// sin, cos and atan2 whose bits are the same on every x86-64 CPU, for the signals a
 // step reads from the clock (a pin's oscillation, the wind's gusts). The C
 // library's own pick their code when the program loads, by the CPU (glibc has
 // separate versions for CPUs with and without FMA), and the two may differ in
@@ -16,5 +16,9 @@ namespace neurocloth {
 
 double portable_sin(double x);
 double portable_cos(double x);
+// The angle of (x, y) in [-pi, pi], as std::atan2 (signed zeros aside): for
+// the angles a step computes from positions (a fold's), which must not change
+// bits with the CPU either. Within a few ulp of the C library's.
+double portable_atan2(double y, double x);
 
 }  // namespace neurocloth

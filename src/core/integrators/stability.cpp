@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/network/scene_module.h"
+
 namespace neurocloth {
 
 double stable_step_bound(const ClothNetwork& net, double limit) {
@@ -64,10 +66,22 @@ double integrator_step_bound(const ClothNetwork& net, const Integrator& integrat
                              StepBoundScratch& scratch, StepBound kind) {
   const double limit = integrator.stability_limit();
   const bool with_damping = !integrator.damps_springs();
-  const double bound =
-      kind == StepBound::spectral
-          ? spectral_step_bound(net, limit, scratch.spectral, with_damping)
-          : stable_step_bound(net, limit, scratch.k_sum, scratch.d_sum, with_damping);
+  double bound = kind == StepBound::spectral
+                     ? spectral_step_bound(net, limit, scratch.spectral, with_damping)
+                     : stable_step_bound(net, limit, scratch.k_sum, scratch.d_sum, with_damping);
+  // A force module that stiffens the cloth (bending's hinges) is explicit in
+  // every integrator, implicit ones included. The largest eigenvalue of a sum
+  // is at most the sum of the largest (Weyl): omega^2 grows by the module's,
+  // and h = L / omega shrinks to match.
+  double module_omega2 = 0;
+  for (const auto& m : net.force_modules)
+    module_omega2 += m->stiffness_bound(net);
+  if (module_omega2 > 0) {
+    if (std::isfinite(limit) && std::isfinite(bound))
+      bound = bound / std::sqrt(1.0 + bound * bound * module_omega2 / (limit * limit));
+    else
+      bound = std::min(bound, 2.0 / std::sqrt(module_omega2));
+  }
   if (integrator.kind() != IntegratorKind::explicit_euler) return bound;
   const double damped = explicit_euler_step_bound(net, scratch.d_sum);
   return damped > 0.0 ? std::min(bound, damped) : bound;

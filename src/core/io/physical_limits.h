@@ -43,6 +43,17 @@ inline constexpr Limit kFriction{0, 10, "", "a Coulomb coefficient above 10 is a
 inline constexpr Limit kStrain{0, 10, "", "a spring ten times its rest length is no longer cloth"};
 inline constexpr Limit kStiffening{1, 1e6, "", "a spring stiffens at most a million-fold"};
 inline constexpr Limit kStretch{1, 100, "", "a spring stretches at most a hundred-fold"};
+// A fabric as a lab measures it (docs/materials.md, "Measured units").
+inline constexpr Limit kArealDensity{
+    0.005, 5, "kg/m^2", "from the sheerest tissue (5 g/m^2) to heavy canvas or leather"};
+inline constexpr Limit kBendingRigidity{
+    1e-9, 1, "N m", "from a sheer film to a board: a fabric's B lies between 1e-8 and 1e-2"};
+inline constexpr Limit kBendingLength{
+    1e-3, 1, "m", "a cantilever's bending length lies between 1 mm (chiffon) and 1 m (a board)"};
+inline constexpr Limit kTensileStiffness{
+    1, 1e7, "N/m", "from a loose knit (~10 N/m) to a dense technical weave (~1e6 N/m)"};
+inline constexpr Limit kShearStiffness{0.01, 1e6, "N/m",
+                                       "a fabric's in-plane shear lies between 1 and 1e4 N/m"};
 inline constexpr Limit kTolerance{0, 1, "", "a relative tolerance is a fraction"};
 // Motion and forces.
 inline constexpr Limit kAcceleration{-1e3, 1e3, "m/s^2", "gravity stays within 100 g"};

@@ -56,6 +56,8 @@ RigidPose collider_pose(const ModuleSpec& collider, double t) {
           return motion_pose(s.motion, s.center, t);
         } else if constexpr (std::is_same_v<T, CapsuleSpec>) {
           return motion_pose(s.motion, 0.5 * (s.a + s.b), t);
+        } else if constexpr (std::is_same_v<T, CylinderSpec>) {
+          return motion_pose(s.motion, s.center, t);
         } else if constexpr (std::is_same_v<T, MeshSpec>) {
           return motion_pose(s.motion, s.translate, t);
         } else {
@@ -83,7 +85,7 @@ const ColliderMotion* collider_motion(const ModuleSpec& collider) {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
                       std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec> ||
-                      std::is_same_v<T, MeshSpec>)
+                      std::is_same_v<T, CylinderSpec> || std::is_same_v<T, MeshSpec>)
           return &s.motion;
         else
           return nullptr;

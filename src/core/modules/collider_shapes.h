@@ -1,7 +1,7 @@
 #pragma once
 // The analytic solids the colliders (colliders.cpp) push nodes out of: plane,
-// box, and capsule (a sphere is a capsule of length 0), each in its own frame,
-// answering what shape_collider.h asks of a shape.
+// box, capsule (a sphere is a capsule of length 0) and cylinder, each in its
+// own frame, answering what shape_collider.h asks of a shape.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +17,26 @@ using Mat3 = Eigen::Matrix3d;
 // normal supports the shape, so a node moved within the plane parallel to it
 // does not come closer to the shape.
 using contact_response::Contact;
+
+// An axis-aligned box about a centre: a solid's bounds, and whether a node's
+// step (from b to x) may meet the solid grown by `reach` (the step's bounding
+// box overlaps the box's). A step may cross a solid, so its end alone would
+// not do.
+struct CentredBounds {
+  Vec3 c, e;  // centre, half the sides
+  bool bounds(Vec3& lo, Vec3& hi) const {
+    lo = c - e;
+    hi = c + e;
+    return true;
+  }
+  bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
+    return overlaps(bx, x, c.x(), e.x() + reach) & overlaps(by, y, c.y(), e.y() + reach) &
+           overlaps(bz, z, c.z(), e.z() + reach);
+  }
+  static bool overlaps(double a, double b, double center, double half) {
+    return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
+  }
+};
 
 class PlaneShape {
  public:
@@ -48,16 +68,11 @@ class PlaneShape {
 class BoxShape {
  public:
   explicit BoxShape(const BoxSpec& s) : c_(s.center), e_(s.half_extents) {}
-  bool bounds(Vec3& lo, Vec3& hi) const {
-    lo = c_ - e_;
-    hi = c_ + e_;
-    return true;
-  }
+  bool bounds(Vec3& lo, Vec3& hi) const { return CentredBounds{c_, e_}.bounds(lo, hi); }
   Vec3 deformation_velocity(const Vec3&) const { return Vec3::Zero(); }
   // The step's path may meet the box grown by reach: the bounding boxes overlap.
   bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
-    return overlaps(bx, x, c_.x(), e_.x() + reach) & overlaps(by, y, c_.y(), e_.y() + reach) &
-           overlaps(bz, z, c_.z(), e_.z() + reach);
+    return CentredBounds{c_, e_}.near(bx, by, bz, x, y, z, reach);
   }
   // contact()'s common case without its branches, for the block scan: a node
   // outside exactly one pair of faces whose step started beyond that same face
@@ -151,9 +166,6 @@ class BoxShape {
       if ((b[k] > e_[k] && d[k] > e_[k]) || (b[k] < -e_[k] && d[k] < -e_[k])) return false;
     return true;
   }
-  static bool overlaps(double a, double b, double center, double half) {
-    return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
-  }
   // The face `side` (+1 or -1) of `axis`, seen from d (relative to the centre).
   Contact face(int axis, double side, const Vec3& d) const {
     Vec3 n = Vec3::Zero();
@@ -239,6 +251,210 @@ class CapsuleShape {
  private:
   Vec3 a_, ab_;
   double inv_len2_, r_;
+};
+
+// A solid circular cylinder with flat ends (a drape tester's support): the
+// points within `radius` of its axis and within half its height of its centre
+// along it. Its surface has three parts, each with its own distance: the side
+// (radial), the two ends (flat) and the rims between them (a circle's points).
+class CylinderShape {
+ public:
+  explicit CylinderShape(const CylinderSpec& s)
+      : c_(s.center), a_(s.axis.normalized()), r_(s.radius), hh_(0.5 * s.height) {
+    for (int k = 0; k < 3; ++k)
+      ext_[k] = hh_ * std::abs(a_[k]) + r_ * std::sqrt(std::max(0.0, 1.0 - a_[k] * a_[k]));
+  }
+  bool bounds(Vec3& lo, Vec3& hi) const { return CentredBounds{c_, ext_}.bounds(lo, hi); }
+  Vec3 deformation_velocity(const Vec3&) const { return Vec3::Zero(); }
+  // The step's path may meet the cylinder grown by reach: it meets the box around it.
+  bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
+    return CentredBounds{c_, ext_}.near(bx, by, bz, x, y, z, reach);
+  }
+  // contact()'s common case without its branches: a node over an end face
+  // (within the radius of the axis, beyond the end) whose step started beyond
+  // the same end, so it cannot have crossed: a cloth lying on the top. The same
+  // bits as contact(); false where contact() decides.
+  bool face_contact(double bx, double by, double bz, double x, double y, double z, double& phi,
+                    double& nx, double& ny, double& nz) const {
+    const Local p = local(x, y, z), b = local(bx, by, bz);
+    const double s = p.y > 0.0 ? 1.0 : -1.0;
+    phi = s * p.y - hh_;
+    nx = s * a_.x();
+    ny = s * a_.y();
+    nz = s * a_.z();
+    return (phi > 0.0) & (p.rho - r_ <= 0.0) & (s * b.y - hh_ > 0.0);
+  }
+  Contact contact(const Vec3& p, const Vec3& before) const {
+    const Where w = where(p, before);
+    switch (w.part) {
+      case Part::end:
+        return {w.s * w.p.y - hh_, w.s * a_};
+      case Part::side:
+        return {w.p.rho - r_, w.p.q / w.p.rho};
+      case Part::rim: {
+        const Vec3 v = rim_offset(w);
+        const double dist = v.norm();
+        return {dist, v / dist};
+      }
+      case Part::entry: {
+        const Vec3 n = w.entry / r_;
+        return {n.dot(w.p.q) - r_, n};
+      }
+      case Part::axis:
+        break;
+    }
+    // On the axis itself every direction across it is as near: a fixed one.
+    return {w.p.rho - r_, across()};
+  }
+  // d phi / dp and d normal / dp at a contact (learning), for the part
+  // contact() chose: an end is flat; on the side and the rims the normal turns
+  // with the node; a plane tangent at a side entry turns with where the step
+  // came in, which moves with p.
+  void jacobian(const Vec3& p, const Vec3& before, const Contact& c, Vec3& grad_phi,
+                Mat3& dn) const {
+    const Where w = where(p, before);
+    const Mat3 across = Mat3::Identity() - a_ * a_.transpose();  // d q / dp
+    grad_phi = c.normal;
+    dn.setZero();
+    switch (w.part) {
+      case Part::end:
+        return;
+      case Part::side:
+        dn = (across - c.normal * c.normal.transpose()) / w.p.rho;
+        return;
+      case Part::rim: {
+        // v = p - the rim's nearest point, whose radial direction q / rho turns with p.
+        const Vec3 radial = w.p.q / w.p.rho;
+        const Mat3 dv = Mat3::Identity() - r_ * (across - radial * radial.transpose()) / w.p.rho;
+        dn = (Mat3::Identity() - c.normal * c.normal.transpose()) * dv / rim_offset(w).norm();
+        return;
+      }
+      case Part::entry: {
+        // The entry e = qb + t (qp - qb) stays on the circle |e| = r: t moves
+        // with p as dt/dp = -t e^T / (e . (qp - qb)).
+        const Vec3 step = w.p.q - w.b.q;
+        const double t = w.t;
+        const Mat3 de =
+            t * across - t * step * w.entry.transpose() / w.entry.dot(step);  // d e / dp
+        dn = de / r_;
+        grad_phi = c.normal + dn.transpose() * w.p.q;
+        return;
+      }
+      case Part::axis:
+        grad_phi.setZero();
+        return;
+    }
+  }
+
+ private:
+  // A point relative to the cylinder: along the axis (y) and across it (q, of
+  // length rho). Written out in doubles, so face_contact() and contact() get
+  // the same bits.
+  struct Local {
+    double y = 0, rho = 0;
+    Vec3 q = Vec3::Zero();
+  };
+  Local local(double x, double y, double z) const {
+    const double dx = x - c_.x(), dy = y - c_.y(), dz = z - c_.z();
+    Local l;
+    l.y = dx * a_.x() + dy * a_.y() + dz * a_.z();
+    const double qx = dx - l.y * a_.x(), qy = dy - l.y * a_.y(), qz = dz - l.y * a_.z();
+    l.rho = std::sqrt(qx * qx + qy * qy + qz * qz);
+    l.q = Vec3(qx, qy, qz);
+    return l;
+  }
+  enum class Part { end, side, rim, entry, axis };
+  // Which part of the surface a node's contact is with: the end (s: +1 the
+  // one the axis points to), the side, a rim, a plane tangent to the side
+  // where the step came in (entry, on the circle, across the axis), or none
+  // on the axis itself.
+  struct Where {
+    Part part = Part::end;
+    Local p, b;
+    double s = 1;
+    double t = 0;               // where along the step it came in (Part::entry)
+    Vec3 entry = Vec3::Zero();  // that point's q
+  };
+  // A node that came in from outside leaves by the part it came in through: a
+  // fast node that crossed the whole cylinder in one step, or went past its
+  // axis, goes back out the way it came, not out of the far side. One that was
+  // outside and did not cross it gets its nearest point; one that started
+  // inside too, the nearest part.
+  Where where(const Vec3& p, const Vec3& before) const {
+    Where w;
+    w.p = local(p.x(), p.y(), p.z());
+    w.b = local(before.x(), before.y(), before.z());
+    w.s = w.p.y > 0.0 ? 1.0 : -1.0;
+    const double dr = w.p.rho - r_, dy = w.s * w.p.y - hh_;
+    const bool outside = dr > 0.0 || dy > 0.0;
+    bool through_side = false;
+    if (entered(w.b, w.p, w.t, through_side)) {
+      if (!through_side) {
+        w.part = Part::end;
+        w.s = w.b.y > 0.0 ? 1.0 : -1.0;
+        return w;
+      }
+      w.entry = w.b.q + w.t * (w.p.q - w.b.q);
+      // Still on the half it came in by: the side's nearest point is near there.
+      w.part = !outside && w.p.q.dot(w.entry) > 0.0 && w.p.rho > 0.0 ? Part::side : Part::entry;
+      return w;
+    }
+    if (outside)
+      w.part = dr > 0.0 && dy > 0.0 ? Part::rim : (dr > 0.0 ? Part::side : Part::end);
+    else
+      w.part = dr > dy ? (w.p.rho > 0.0 ? Part::side : Part::axis) : Part::end;
+    return w;
+  }
+  // Whether the step from b to p (both relative to the cylinder) starts
+  // outside and passes through the inside; where along it it comes in (t) and
+  // whether through the side (else through the end on b's side).
+  bool entered(const Local& b, const Local& p, double& t, bool& through_side) const {
+    double t_in = 0.0, t_out = 1.0;
+    bool from_outside = false;
+    // Between the ends' planes.
+    const double delta = p.y - b.y;
+    if (delta == 0.0) {
+      if (!(std::abs(b.y) < hh_)) return false;
+    } else {
+      const double t0 = (-hh_ - b.y) / delta, t1 = (hh_ - b.y) / delta;
+      if (std::min(t0, t1) > t_in) {
+        t_in = std::min(t0, t1);
+        from_outside = true;
+        through_side = false;
+      }
+      t_out = std::min(t_out, std::max(t0, t1));
+    }
+    // Within the radius: |qb + t (qp - qb)|^2 < r^2.
+    const Vec3 step = p.q - b.q;
+    const double aa = step.squaredNorm(), bb = b.q.dot(step), cc = b.q.squaredNorm() - r_ * r_;
+    if (aa == 0.0) {
+      if (!(cc < 0.0)) return false;
+    } else {
+      const double disc = bb * bb - aa * cc;
+      if (!(disc > 0.0)) return false;
+      const double root = std::sqrt(disc);
+      const double t0 = (-bb - root) / aa, t1 = (-bb + root) / aa;
+      if (t0 > t_in) {
+        t_in = t0;
+        from_outside = true;
+        through_side = true;
+      }
+      t_out = std::min(t_out, t1);
+    }
+    t = t_in;
+    return from_outside && t_in < t_out;
+  }
+  // From the nearest point of a rim to the node.
+  Vec3 rim_offset(const Where& w) const {
+    return (w.p.rho - r_) * (w.p.q / w.p.rho) + (w.s * w.p.y - hh_) * w.s * a_;
+  }
+  Vec3 across() const {
+    const Vec3 helper = std::abs(a_.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    return a_.cross(helper).normalized();
+  }
+  Vec3 c_, a_;     // centre, unit axis
+  double r_, hh_;  // radius, half the height
+  Vec3 ext_;       // half the sides of the box around it
 };
 
 }  // namespace neurocloth::collider_shapes

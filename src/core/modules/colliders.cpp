@@ -1,13 +1,13 @@
-// Contact with the analytic solids (plane, box, sphere, capsule), with Coulomb
+// Contact with the analytic solids (plane, box, sphere, capsule, cylinder), with Coulomb
 // friction (contact_response.h). A collider is a projection run after each
 // integrator step: a free node that ended the step closer than `thickness` to
 // the surface (or inside) is moved out along the surface normal.
 //
 // Node contact only: an edge between two nodes outside a shape may still cut
 // through a corner or a thin part of it (the mesh collider tests the cloth's
-// edges against its sharp edges). A box catches a node whose step crosses it
-// entirely; a sphere or capsule judges by where the step ends, so a node
-// moving more than about its radius in one step may pass through.
+// edges against its sharp edges). A box or a cylinder catches a node whose
+// step crosses it entirely; a sphere or capsule judges by where the step ends,
+// so a node moving more than about its radius in one step may pass through.
 #include "core/modules/collider_motion.h"
 #include "core/modules/collider_shapes.h"
 #include "core/modules/module_factories.h"
@@ -18,6 +18,7 @@ namespace {
 
 using collider_shapes::BoxShape;
 using collider_shapes::CapsuleShape;
+using collider_shapes::CylinderShape;
 using collider_shapes::PlaneShape;
 using contact_response::ColliderFrame;
 
@@ -92,6 +93,9 @@ std::unique_ptr<ConstraintModule> make_collider(const SphereSpec& spec) {
 }
 std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec& spec) {
   return make("capsule", CapsuleShape(spec.a, spec.b, spec.radius), spec);
+}
+std::unique_ptr<ConstraintModule> make_collider(const CylinderSpec& spec) {
+  return make("cylinder", CylinderShape(spec), spec);
 }
 
 }  // namespace neurocloth

@@ -13,6 +13,7 @@ std::unique_ptr<ConstraintModule> make_collider(const PlaneSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const BoxSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const SphereSpec& spec);
 std::unique_ptr<ConstraintModule> make_collider(const CapsuleSpec& spec);
+std::unique_ptr<ConstraintModule> make_collider(const CylinderSpec& spec);
 // mesh_collider.cpp: the same contact against a triangle mesh, and the
 // cloth's edges (its triangles') against the mesh's sharp edges.
 std::unique_ptr<ConstraintModule> make_collider(const MeshSpec& spec,
@@ -21,6 +22,9 @@ std::unique_ptr<ConstraintModule> make_collider(const MeshSpec& spec,
 // air.cpp
 std::shared_ptr<ForceModule> make_air_drag(const AirDragSpec& spec);
 std::shared_ptr<ForceModule> make_wind(const WindSpec& spec, const ClothTopology& topology);
+
+// bending.cpp: dihedral-angle hinges over the cloth's interior edges.
+std::shared_ptr<ForceModule> make_bending(const BendingSpec& spec, const ClothTopology& topology);
 
 // strain_limit.cpp
 std::unique_ptr<ConstraintModule> make_strain_limit(const StrainLimitSpec& spec,

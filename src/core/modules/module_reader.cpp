@@ -136,6 +136,28 @@ ModuleSpec read_capsule(const ModuleFields& m) {
   return s;
 }
 
+ModuleSpec read_cylinder(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(),
+                    {"type", "center", "axis", "radius", "height", CONTACT_KEYS});
+  CylinderSpec s;
+  s.center = m.required_vec3_within("center", limits::kCoordinate);
+  s.axis = m.vec3_within("axis", s.axis, limits::kDirection);
+  if (!(s.axis.norm() > 1e-9)) m.fail("axis", "must not be zero");
+  s.axis.normalize();
+  s.radius = m.required_within("radius", limits::kSize);
+  s.height = m.required_within("height", limits::kSize);
+  s.contact = read_contact(m);
+  s.motion = read_motion(m);
+  return s;
+}
+
+ModuleSpec read_bending(const ModuleFields& m) {
+  m.in().allow_only(m.obj(), m.field(), {"type", "rigidity"});
+  BendingSpec s;
+  if (m.has("rigidity")) s.rigidity = m.within("rigidity", 0.0, limits::kBendingRigidity);
+  return s;
+}
+
 // The OBJ (and a cache) are read here, with the scene: a bad file is refused
 // before anything runs, naming the file and who loaded it.
 ModuleSpec read_mesh(const ModuleFields& m) {
@@ -318,8 +340,12 @@ std::vector<ModuleDeclaration> read_modules(const JsonFields& in, const json& mo
       spec = read_sphere(m);
     else if (type == "capsule")
       spec = read_capsule(m);
+    else if (type == "cylinder")
+      spec = read_cylinder(m);
     else if (type == "mesh")
       spec = read_mesh(m);
+    else if (type == "bending")
+      spec = read_bending(m);
     else if (type == "air_drag")
       spec = read_air_drag(m);
     else if (type == "wind")

@@ -8,8 +8,8 @@
 namespace neurocloth {
 
 const char* module_type_names() {
-  return "plane, box, sphere, capsule, mesh, air_drag, wind, strain_limit, self_collision, "
-         "pin_motion";
+  return "plane, box, sphere, capsule, cylinder, mesh, air_drag, wind, strain_limit, "
+         "self_collision, pin_motion, bending";
 }
 
 ModuleSet build_modules(const std::vector<ModuleDeclaration>& declarations,
@@ -23,6 +23,8 @@ ModuleSet build_modules(const std::vector<ModuleDeclaration>& declarations,
           std::unique_ptr<ConstraintModule> constraint;
           if constexpr (std::is_same_v<T, AirDragSpec>)
             force = make_air_drag(spec);
+          else if constexpr (std::is_same_v<T, BendingSpec>)
+            force = make_bending(spec, topology);
           else if constexpr (std::is_same_v<T, WindSpec>)
             force = make_wind(spec, topology);
           else if constexpr (std::is_same_v<T, StrainLimitSpec>)

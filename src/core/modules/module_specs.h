@@ -66,6 +66,17 @@ struct CapsuleSpec {  // the points within `radius` of the segment a-b
   ColliderMotion motion;  // pivot: the middle of a-b
 };
 
+// A solid circular cylinder with flat ends: the support of a drape tester
+// (ISO 9073-9: an 18 cm disc), a post, a table leg.
+struct CylinderSpec {
+  Vec3 center = Vec3(0, 0, 0);  // the middle of its axis
+  Vec3 axis = Vec3(0, 1, 0);    // unit after reading
+  double radius = 0.09;         // m, > 0
+  double height = 0.1;          // m, > 0: end to end along the axis
+  ContactSpec contact;
+  ColliderMotion motion;  // pivot: center
+};
+
 // A triangle mesh from an OBJ (obstacle_mesh.h): a closed mesh is solid, an
 // open one a two-sided shell kept `thickness` away on either side.
 struct MeshSpec {
@@ -118,6 +129,17 @@ struct SelfCollisionSpec {
   int iterations = 2;       // passes per step
 };
 
+// Plate bending on every interior edge of the cloth's triangles: a
+// dihedral-angle hinge (Bridson et al. 2003, Grinspun et al. 2003) whose
+// energy for a fold of angle theta is (B/2) |e|^2 / (A1 + A2) * theta^2, so a
+// sheet bent to curvature k stores (B/2) k^2 per area at any resolution
+// (docs/materials.md, "Bending").
+struct BendingSpec {
+  // N m: the bending rigidity per unit width (KES-FB2's B). Unset: the
+  // material's measured bending_rigidity (scene_reader fills it in).
+  std::optional<double> rigidity;
+};
+
 // Pinned nodes follow a path: their rest position plus an offset in time.
 struct PinMotionSpec {
   std::vector<int> nodes;  // default: every pin of the scene
@@ -128,14 +150,22 @@ struct PinMotionSpec {
   double frequency = 0;  // Hz; used when there are no keyframes
 };
 
-using ModuleSpec = std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, MeshSpec, AirDragSpec,
-                                WindSpec, StrainLimitSpec, SelfCollisionSpec, PinMotionSpec>;
+using ModuleSpec =
+    std::variant<PlaneSpec, BoxSpec, SphereSpec, CapsuleSpec, CylinderSpec, MeshSpec, AirDragSpec,
+                 WindSpec, StrainLimitSpec, SelfCollisionSpec, PinMotionSpec, BendingSpec>;
 
 // Whether a declared module is a collider (the solids the cloth touches).
 inline bool is_collider(const ModuleSpec& spec) {
   return std::holds_alternative<PlaneSpec>(spec) || std::holds_alternative<BoxSpec>(spec) ||
          std::holds_alternative<SphereSpec>(spec) || std::holds_alternative<CapsuleSpec>(spec) ||
-         std::holds_alternative<MeshSpec>(spec);
+         std::holds_alternative<CylinderSpec>(spec) || std::holds_alternative<MeshSpec>(spec);
+}
+
+// Whether a declared module adds forces (a ForceModule: built in declaration
+// order into ClothNetwork::force_modules) rather than correcting the state.
+inline bool is_force_module(const ModuleSpec& spec) {
+  return std::holds_alternative<AirDragSpec>(spec) || std::holds_alternative<WindSpec>(spec) ||
+         std::holds_alternative<BendingSpec>(spec);
 }
 
 struct ModuleDeclaration {

@@ -17,7 +17,8 @@
 namespace neurocloth {
 
 ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& material,
-                                 const SpringFunction& function, std::vector<double> mass_share) {
+                                 const SpringFunction& function, std::vector<double> mass_share,
+                                 std::vector<double> spring_share) {
   ClothNetwork net;
   const std::size_t n = topology.rest_positions.size();
   net.masses.inverse_mass.assign(n, 0.0);
@@ -38,6 +39,12 @@ ClothNetwork ClothNetwork::build(const ClothTopology& topology, const Material& 
     L.family.push_back(s.family);
     L.rest_length.push_back((topology.rest_positions[s.b] - topology.rest_positions[s.a]).norm());
   }
+  if (spring_share.empty())
+    net.spring_share.assign(L.size(), 1.0);
+  else if (spring_share.size() == L.size())
+    net.spring_share = std::move(spring_share);
+  else
+    throw std::invalid_argument("ClothNetwork::build: one spring share per spring, or none");
   L.stiffness.assign(L.size(), 0.0);
   L.damping.assign(L.size(), 0.0);
   L.rebuild_runs();
@@ -62,6 +69,11 @@ MaterialWeights ClothNetwork::material_weights(const Material& m) const {
     }
   }
   w.damping.assign(springs.size(), m.viscosity);
+  if (spring_share.size() == springs.size())
+    for (std::size_t s = 0; s < springs.size(); ++s) {
+      w.stiffness[s] *= spring_share[s];
+      w.damping[s] *= spring_share[s];
+    }
   w.inverse_mass.resize(masses.size());
   for (std::size_t i = 0; i < masses.size(); ++i)
     w.inverse_mass[i] = 1.0 / (m.node_mass * mass_share[i]);

@@ -61,6 +61,10 @@ class ClothNetwork {
   // scene says otherwise): apply_material() sets m_i = node_mass * mass_share_i.
   // Cold data, read only when a material is applied.
   std::vector<double> mass_share;
+  // Per spring, how many of a material's spring constants and viscosities it
+  // carries (1 each unless the scene says otherwise: a measured material on a
+  // mesh, measured_material.h). Cold data like mass_share.
+  std::vector<double> spring_share;
   // The scene's force modules (air drag, wind): more inputs to the acceleration
   // neurons, evaluated with the springs. Empty unless the scene declares them.
   // Immutable, so copies of the network share them safely; a live change
@@ -72,7 +76,8 @@ class ClothNetwork {
   // node weighing mass_share (one per node; empty: 1 each) node masses.
   static ClothNetwork build(const ClothTopology& topology, const Material& material,
                             const SpringFunction& function = {},
-                            std::vector<double> mass_share = {});
+                            std::vector<double> mass_share = {},
+                            std::vector<double> spring_share = {});
 
   std::size_t node_count() const { return masses.size(); }
   std::size_t spring_count() const { return springs.size(); }

@@ -5,6 +5,12 @@
 // directly.
 namespace neurocloth {
 
+// A material given per area (in words, or measured) weighs node_mass for this
+// much cloth, m^2 (a node of a 5 cm grid); a scene gives each node its lumped
+// share of the cloth's area in these units (Scene::build_network), so the
+// cloth weighs the same at any resolution.
+inline constexpr double kReferenceNodeArea = 0.0025;
+
 struct Material {
   double spring_constant = 200.0;  // N/m, structural springs
   double shear_constant = -1.0;    // N/m; < 0 means "same as spring_constant"

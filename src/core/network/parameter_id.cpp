@@ -47,6 +47,8 @@ const char* module_parameter_name(ModuleParameter p) {
       return "lift";
     case ModuleParameter::friction:
       return "friction";
+    case ModuleParameter::rigidity:
+      return "rigidity";
   }
   return "?";
 }

@@ -21,8 +21,10 @@ enum class ModuleParameter {
   drag,      // wind: drag coefficient
   lift,      // wind: lift coefficient
   friction,  // a collider's own kinetic Coulomb coefficient
+  rigidity,  // bending: the bending rigidity, N m
 };
-inline constexpr int kModuleParameterSlots = 7;  // velocity x, y, z, rate, drag, lift, friction
+// velocity x, y, z, rate, drag, lift, friction, rigidity
+inline constexpr int kModuleParameterSlots = 8;
 // Where a module parameter's gradient goes in a module's slots (learning).
 inline int module_slot(ModuleParameter p, int axis) {
   return p == ModuleParameter::velocity ? axis : 2 + static_cast<int>(p);

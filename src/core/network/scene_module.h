@@ -96,6 +96,11 @@ class ForceModule : public SceneModule {
   // the cloth (J), for the divergence check's budget; `size` is the cloth's
   // extent in m. Dissipative modules put in none.
   virtual double energy_bound(const ClothNetwork& /*net*/, double /*size*/) const { return 0; }
+  // The largest omega^2 (1/s^2) the module's forces give a free node, as a
+  // bound on its rows of M^-1 times the forces' Jacobian (Gershgorin): the
+  // step bound adds it to the springs' (stability.h). 0 for a module whose
+  // forces do not stiffen the cloth (drag, wind).
+  virtual double stiffness_bound(const ClothNetwork& /*net*/) const { return 0; }
   // Adds the module's force on every node to `force` (N). Must not allocate.
   // `inputs` are the step's (its time); `context` how the evaluation runs (its
   // threads); `net` is the model this module is part of.

@@ -109,6 +109,40 @@ void append_capsule(const CapsuleSpec& capsule, SurfaceMesh& mesh) {
   append_lattice(kStacks + 1, kSlices, point, direction, mesh);
 }
 
+void append_cylinder(const CylinderSpec& cylinder, SurfaceMesh& mesh) {
+  const Vec3 axis = cylinder.axis.normalized();
+  Vec3 u, v;
+  orthonormal_basis(axis, u, v);
+  const Vec3 half = 0.5 * cylinder.height * axis;
+  auto across = [&](int j) -> Vec3 {
+    const double azimuth = 2 * kPi * j / kSlices;
+    return Vec3(std::cos(azimuth) * u + std::sin(azimuth) * v);
+  };
+  // The side: two rows of vertices, the top one (j) first; u x v = axis, so
+  // (top j, bottom j, top j + 1) is counter-clockwise seen from outside.
+  append_lattice(
+      1, kSlices,
+      [&](int i, int j) -> Vec3 {
+        return Vec3(cylinder.center + (i == 0 ? half : Vec3(-half)) + cylinder.radius * across(j));
+      },
+      [&](int, int j) { return across(j); }, mesh);
+  // Each end a fan around its centre, with its own vertices so that it stays flat.
+  for (const double side : {1.0, -1.0}) {
+    const Vec3 n = side * axis, centre = cylinder.center + side * half;
+    const std::uint32_t middle = mesh.add_vertex(centre, n);
+    for (int j = 0; j < kSlices; ++j)
+      mesh.add_vertex(centre + cylinder.radius * across(j), n);
+    for (int j = 0; j < kSlices; ++j) {
+      const std::uint32_t a = middle + 1 + std::uint32_t(j),
+                          b = middle + 1 + std::uint32_t((j + 1) % kSlices);
+      if (side > 0)
+        mesh.add_triangle(middle, a, b);
+      else
+        mesh.add_triangle(middle, b, a);
+    }
+  }
+}
+
 void append_plane(const PlaneSpec& plane, const Vec3& centre, double half_size, SurfaceMesh& mesh) {
   const Vec3 n = plane.normal.normalized();
   Vec3 u, v;
@@ -196,6 +230,8 @@ void append_collider(const ModuleSpec& collider, const Vec3& centre, double plan
           append_sphere(s, mesh);
         else if constexpr (std::is_same_v<T, CapsuleSpec>)
           append_capsule(s, mesh);
+        else if constexpr (std::is_same_v<T, CylinderSpec>)
+          append_cylinder(s, mesh);
         else if constexpr (std::is_same_v<T, MeshSpec>) {
           if (s.mesh) append_obstacle(*s.mesh, mesh);
         }

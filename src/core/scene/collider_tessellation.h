@@ -2,8 +2,8 @@
 // Triangle meshes of the colliders a scene declares, in each collider's shape
 // frame: the spec's own coordinates, which collider_pose (collider_motion.h)
 // takes to the world at a moment. A plane is a large square around the scene,
-// boxes (axis-aligned as declared: a box's rotation is its pose's), spheres
-// and capsules are tessellated, a mesh obstacle is its own triangles. What the
+// boxes (axis-aligned as declared: a box's rotation is its pose's), spheres,
+// capsules and cylinders are tessellated, a mesh obstacle is its own triangles. What the
 // renderer draws and `simulate --export-pc2` writes, so both show one shape.
 // Plain C++, no OpenGL.
 #include <cstdint>
@@ -38,6 +38,8 @@ struct SurfaceMesh {
 void append_box(const BoxSpec& box, SurfaceMesh& mesh);
 void append_sphere(const SphereSpec& sphere, SurfaceMesh& mesh);
 void append_capsule(const CapsuleSpec& capsule, SurfaceMesh& mesh);
+// Its side smooth (normals across the axis), its two ends flat discs.
+void append_cylinder(const CylinderSpec& cylinder, SurfaceMesh& mesh);
 // A square of half side `half_size` on the plane, centred where `centre` projects onto it.
 void append_plane(const PlaneSpec& plane, const Vec3& centre, double half_size, SurfaceMesh& mesh);
 // A mesh obstacle's triangles at its surface's vertices, normals smooth across

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -33,26 +32,14 @@ LinguisticMaterial read_linguistic_material(const JsonFields& in, const nlohmann
 }
 
 LinguisticMaterial load_preset(const std::string& name) {
-  const std::string path = assets_directory() + "/materials/" + name + ".json";
-  std::error_code ec;
-  if (name.empty() || name.find('/') != std::string::npos ||
-      !std::filesystem::is_regular_file(path, ec)) {
-    std::string known;
-    for (const auto& n : preset_names())
-      known += (known.empty() ? "" : ", ") + n;
-    throw InputError(path, "", "no material preset '" + name + "' (presets: " + known + ")");
-  }
+  const std::string path =
+      named_json_file(assets_directory() + "/materials", name, "material preset", "presets");
   const JsonFields in(read_text_file(path, "material preset", kMaxSceneBytes), path);
   return read_linguistic_material(in, in.root(), "");
 }
 
 std::vector<std::string> preset_names() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(assets_directory() + "/materials", ec))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
+  return json_names_in(assets_directory() + "/materials");
 }
 
 namespace {

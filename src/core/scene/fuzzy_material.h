@@ -52,7 +52,7 @@ class FuzzyMaterial {
   static constexpr const char* kOptionalOutputs[] = {"shear_constant", "bend_constant"};
   // node_mass is the mass of this much cloth (a node of a 5 cm grid), m^2;
   // scenes give each node its lumped share (Scene::build_network).
-  static constexpr double kReferenceNodeArea = 0.0025;
+  static constexpr double kReferenceNodeArea = neurocloth::kReferenceNodeArea;
 
   // Throws InputError (naming `source`) when an output is missing or its range
   // admits values the network cannot take (node_mass <= 0, negative constants).

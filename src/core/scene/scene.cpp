@@ -50,7 +50,15 @@ Scene resized_grid(const Scene& scene, int n) {
   // A rule base's node_mass is per area already; a numeric one is per node, so
   // it is spread over the new nodes. A line of nodes (a chain) has no area: it
   // keeps its total mass.
-  if (!scene.fuzzy_material) {
+  if (scene.measured_material) {
+    s.material_notes.clear();
+    s.material = measured_constants(*scene.measured_material, s.topology, &s.material_notes);
+    // A measured material bends by its hinges, never by bend springs.
+    s.topology.springs.erase(
+        std::remove_if(s.topology.springs.begin(), s.topology.springs.end(),
+                       [](const SpringSpec& sp) { return sp.family == SpringFamily::bend; }),
+        s.topology.springs.end());
+  } else if (!scene.fuzzy_material) {
     const double area = cloth_area(scene.topology);
     const double kept = area > 0 ? mass * cloth_area(s.topology) / area : mass;
     s.material.node_mass = kept / (static_cast<double>(n) * n);
@@ -62,17 +70,20 @@ Scene resized_grid(const Scene& scene, int n) {
 }
 
 ClothNetwork Scene::build_network() const {
-  // A rule base's node_mass is the mass of kReferenceNodeArea of cloth: each
-  // node carries its lumped share, so the material weighs the same at any
-  // resolution (explicit materials give kg per node and are left as written).
+  // A rule base's or a measured material's node_mass is the mass of
+  // kReferenceNodeArea of cloth: each node carries its lumped share, so the
+  // material weighs the same at any resolution (explicit materials give kg
+  // per node and are left as written).
   std::vector<double> share;
-  if (fuzzy_material) {
+  if (fuzzy_material || measured_material) {
     const std::vector<double> area = lumped_node_areas(topology);
     if (std::all_of(area.begin(), area.end(), [](double a) { return a > 0; }))
       for (double a : area)
-        share.push_back(a / FuzzyMaterial::kReferenceNodeArea);
+        share.push_back(a / kReferenceNodeArea);
   }
-  ClothNetwork net = ClothNetwork::build(topology, material, spring_function, std::move(share));
+  ClothNetwork net = ClothNetwork::build(
+      topology, material, spring_function, std::move(share),
+      measured_material ? measured_spring_shares(topology) : std::vector<double>{});
   if (element_weights) element_weights->apply_to(net);
   net.gravity = gravity;
   for (int p : pins)

@@ -13,6 +13,7 @@
 #include "core/modules/module_specs.h"
 #include "core/network/cloth_network.h"
 #include "core/scene/grid_builder.h"
+#include "core/scene/measured_material.h"
 #include "core/simulation/simulation.h"
 #include "core/simulation/solver_settings.h"
 
@@ -42,6 +43,11 @@ struct Scene {
     std::vector<std::string> notes;  // clamped inputs, defaulted outputs
   };
   std::optional<FuzzySource> fuzzy_material;
+  // Set when the material was given in measured units ({"measured": ...}):
+  // what `material` was derived from, for this topology (measured_material.h),
+  // and what the cloth could not represent of it.
+  std::optional<MeasuredMaterial> measured_material;
+  std::vector<std::string> material_notes;
   SpringFunction spring_function;
   Vec3 gravity = Vec3(0, -9.81, 0);
   SolverSettings solver;

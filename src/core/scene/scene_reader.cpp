@@ -12,6 +12,7 @@
 #include "core/io/text_file.h"
 #include "core/modules/module_reader.h"
 #include "core/network/material_limits.h"
+#include "core/scene/disc_builder.h"
 #include "core/scene/element_weights.h"
 #include "core/scene/fuzzy_material.h"
 #include "core/scene/grid_builder.h"
@@ -79,6 +80,15 @@ GridSpec read_grid(const JsonFields& in, const json& grid, const SpringFamilies&
   return spec;
 }
 
+// A triangle cloth's builder makes a structural spring per edge; "springs"
+// without "structural" takes them out.
+void drop_structural(ClothTopology& t) {
+  t.springs.erase(
+      std::remove_if(t.springs.begin(), t.springs.end(),
+                     [](const SpringSpec& s) { return s.family == SpringFamily::structural; }),
+      t.springs.end());
+}
+
 ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFamilies& families) {
   const std::string field = "cloth.mesh";
   in.allow_only(mesh, field, {"obj", "scale", "translate"});
@@ -97,13 +107,33 @@ ClothTopology read_mesh(const JsonFields& in, const json& mesh, const SpringFami
                      e.message() + " (loaded by " + in.file() + ", field '" + field + ".obj')",
                      e.line(), e.column());
   }
-  if (!families.structural) {
-    t.springs.erase(
-        std::remove_if(t.springs.begin(), t.springs.end(),
-                       [](const SpringSpec& s) { return s.family == SpringFamily::structural; }),
-        t.springs.end());
-  }
+  if (!families.structural) drop_structural(t);
   return t;
+}
+
+DiscSpec read_disc(const JsonFields& in, const json& disc, const SpringFamilies& families) {
+  const std::string field = "cloth.disc";
+  in.allow_only(disc, field, {"radius", "rings", "center", "normal", "clamp"});
+  DiscSpec spec;
+  spec.radius = in.number(in.member(disc, field, "radius"), field + ".radius", limits::kSize);
+  spec.rings = in.integer(in.member(disc, field, "rings"), field + ".rings");
+  if (spec.rings < 1 || spec.rings > kMaxDiscRings)
+    in.fail(field + ".rings", "must be in [1, " + std::to_string(kMaxDiscRings) + "] (got " +
+                                  std::to_string(spec.rings) + ")");
+  if (in.has(disc, "center"))
+    spec.center = in.vec3(disc.at("center"), field + ".center", limits::kCoordinate);
+  if (in.has(disc, "normal"))
+    spec.normal = in.vec3(disc.at("normal"), field + ".normal", limits::kDirection);
+  if (!(spec.normal.norm() > 1e-9)) in.fail(field + ".normal", "must not be zero");
+  spec.normal.normalize();
+  if (in.has(disc, "clamp")) {
+    spec.clamp = in.number(disc.at("clamp"), field + ".clamp", limits::kSize);
+    if (!(spec.clamp < spec.radius))
+      in.fail(field + ".clamp", "must be less than the radius (" + show_number(spec.radius) +
+                                    " m): a clamped disc has no cloth left to drape");
+  }
+  spec.bend = families.bend;
+  return spec;
 }
 
 // Spacing, origin, a mesh's vertices, scale and translation are each in range,
@@ -151,10 +181,36 @@ SpringFunction read_spring_function(const JsonFields& in, const json& cloth) {
   return fn;
 }
 
+// "material": {"measured": {...}} or {"measured": "denim"} (a shipped
+// fabric, assets/materials/fabrics): alone in its material (a material is
+// measured, in words, or in the network's numbers: one of them).
+MeasuredMaterial read_measured(const JsonFields& in, const json& m) {
+  for (auto it = m.begin(); it != m.end(); ++it)
+    if (it.key() != "measured")
+      in.fail("material." + it.key(),
+              "cannot stand beside 'measured': a material is measured, in words (rules, preset) "
+              "or in the network's numbers, one of them");
+  const json& v = m.at("measured");
+  if (v.is_string()) {
+    try {
+      return load_measured_preset(in.string(v, "material.measured")).measured;
+    } catch (const InputError& e) {
+      in.fail("material.measured", e.what());
+    }
+  }
+  return read_measured_material(in, v, "material.measured");
+}
+
 Material read_material(const JsonFields& in, const json& root,
-                       std::optional<Scene::FuzzySource>& fuzzy) {
+                       std::optional<Scene::FuzzySource>& fuzzy,
+                       std::optional<MeasuredMaterial>& measured) {
   const std::string field = "material";
   const json& m = in.member(root, "", "material");
+  in.require_object(m, field);
+  if (in.has(m, "measured")) {
+    measured = read_measured(in, m);
+    return {};  // its constants depend on the cloth: parse_scene derives them
+  }
   // A linguistic material: a preset's, or rules and inputs given here.
   if (in.has(m, "preset") || in.has(m, "rules")) {
     LinguisticMaterial lm;
@@ -281,6 +337,29 @@ void check_is_a_json_object(const std::string& text, const std::string& path) {
                    i < text.size() ? line : 0);
 }
 
+// A bending module takes the measured rigidity unless it states its own; a
+// measured rigidity with no bending module declared gets one (the material
+// asked for it), declared after the scene's own modules.
+void attach_bending(const JsonFields& in, Scene& scene) {
+  const std::optional<double> measured =
+      scene.measured_material ? scene.measured_material->bending_rigidity : std::nullopt;
+  bool declared = false;
+  for (std::size_t i = 0; i < scene.modules.size(); ++i) {
+    auto* bending = std::get_if<BendingSpec>(&scene.modules[i].spec);
+    if (!bending) continue;
+    declared = true;
+    if (bending->rigidity) continue;
+    if (!measured)
+      in.fail(JsonLocator::member(JsonLocator::element("modules", i), "rigidity"),
+              "is needed: the material states no measured bending_rigidity to take");
+    bending->rigidity = measured;
+  }
+  if (measured && !declared) {
+    json declaration = {{"type", "bending"}, {"rigidity", *measured}};
+    scene.modules.push_back({"bending", declaration.dump(), BendingSpec{measured}});
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& path) {
@@ -298,28 +377,54 @@ Scene parse_scene(const std::string& text, const std::string& path) {
 
   const json& cloth = in.member(root, "", "cloth");
   in.allow_only(cloth, "cloth",
-                {"grid", "mesh", "springs", "pins", "spring_function", "initial_velocity"});
-  const bool grid = in.has(cloth, "grid"), mesh = in.has(cloth, "mesh");
-  if (grid == mesh) in.fail("cloth", "needs exactly one of 'grid' or 'mesh'");
-  const SpringFamilies families = read_families(in, cloth, mesh);
+                {"grid", "mesh", "disc", "springs", "pins", "spring_function", "initial_velocity"});
+  std::optional<DiscSpec> disc_spec;
+  const bool grid = in.has(cloth, "grid"), mesh = in.has(cloth, "mesh"),
+             disc = in.has(cloth, "disc");
+  if (grid + mesh + disc != 1) in.fail("cloth", "needs exactly one of 'grid', 'mesh' or 'disc'");
+  const SpringFamilies families = read_families(in, cloth, !grid);
   if (grid) {
     scene.grid = read_grid(in, cloth.at("grid"), families);
     scene.topology = build_grid(*scene.grid);
-  } else {
+  } else if (mesh) {
     scene.topology = read_mesh(in, cloth.at("mesh"), families);
+  } else {
+    disc_spec = read_disc(in, cloth.at("disc"), families);
+    scene.topology = build_disc(*disc_spec);
+    if (!families.structural) drop_structural(scene.topology);
   }
-  check_extent(in, scene.topology, grid ? "cloth.grid" : "cloth.mesh");
+  check_extent(in, scene.topology, grid ? "cloth.grid" : mesh ? "cloth.mesh" : "cloth.disc");
   scene.pins = read_pins(in, cloth, scene.topology);
+  if (disc_spec && disc_spec->clamp > 0) {
+    // The clamped nodes, with a margin for rounding: a ring laid at the clamp's
+    // radius is held.
+    const double reach = disc_spec->clamp * (1 + 1e-9);
+    for (std::size_t i = 0; i < scene.topology.rest_positions.size(); ++i)
+      if ((scene.topology.rest_positions[i] - disc_spec->center).norm() <= reach &&
+          std::find(scene.pins.begin(), scene.pins.end(), static_cast<int>(i)) == scene.pins.end())
+        scene.pins.push_back(static_cast<int>(i));
+  }
   if (in.has(cloth, "initial_velocity"))
     scene.initial_velocity =
         in.vec3(cloth.at("initial_velocity"), "cloth.initial_velocity", limits::kSpeed);
   scene.spring_function = read_spring_function(in, cloth);
-  scene.material = read_material(in, root, scene.fuzzy_material);
+  scene.material = read_material(in, root, scene.fuzzy_material, scene.measured_material);
+  if (scene.measured_material) {
+    // A measured material bends by the bending module's hinges; bend springs
+    // (theta^4, no rigidity) would only add to it.
+    scene.topology.springs.erase(
+        std::remove_if(scene.topology.springs.begin(), scene.topology.springs.end(),
+                       [](const SpringSpec& s) { return s.family == SpringFamily::bend; }),
+        scene.topology.springs.end());
+    scene.material =
+        measured_constants(*scene.measured_material, scene.topology, &scene.material_notes);
+  }
   if (in.has(root, "gravity"))
     scene.gravity = in.vec3(root.at("gravity"), "gravity", limits::kAcceleration);
   scene.solver = read_solver(in, root);
   if (in.has(root, "modules"))
     scene.modules = read_modules(in, root.at("modules"), scene.topology, scene.pins);
+  attach_bending(in, scene);
   // What a fit wrote about itself: a note for people, checked only for being one.
   if (in.has(root, "fitted")) in.require_object(root.at("fitted"), "fitted");
   if (in.has(root, "element_weights")) {

@@ -21,9 +21,11 @@ void set_spec_parameter(ModuleSpec& spec, const ParameterId& id, double value) {
           if (id.parameter == ModuleParameter::lift) s.lift = value;
         } else if constexpr (std::is_same_v<T, AirDragSpec>) {
           if (id.parameter == ModuleParameter::rate) s.rate = value;
+        } else if constexpr (std::is_same_v<T, BendingSpec>) {
+          if (id.parameter == ModuleParameter::rigidity) s.rigidity = value;
         } else if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
                              std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec> ||
-                             std::is_same_v<T, MeshSpec>) {
+                             std::is_same_v<T, CylinderSpec> || std::is_same_v<T, MeshSpec>) {
           if (id.parameter == ModuleParameter::friction) s.contact.friction = value;
         }
       },

@@ -42,6 +42,8 @@ Limit module_limit(ModuleParameter p) {
       return limits::kCoefficient;
     case ModuleParameter::friction:
       return limits::kFriction;
+    case ModuleParameter::rigidity:
+      return limits::kBendingRigidity;
   }
   return {-HUGE_VAL, HUGE_VAL, "", ""};
 }
@@ -57,8 +59,8 @@ struct ModuleParameterName {
 };
 bool parse_module_parameter(const std::string& text, ModuleParameterName& out) {
   static const ModuleParameter all[] = {ModuleParameter::velocity, ModuleParameter::rate,
-                                        ModuleParameter::drag, ModuleParameter::lift,
-                                        ModuleParameter::friction};
+                                        ModuleParameter::drag,     ModuleParameter::lift,
+                                        ModuleParameter::friction, ModuleParameter::rigidity};
   for (ModuleParameter p : all) {
     const std::string name = module_parameter_name(p);
     if (p == ModuleParameter::velocity) {
@@ -198,6 +200,16 @@ void FitProblem::Impl::parse_parameters() {
 
   for (const std::string& name : names) {
     if (!seen.insert(name).second) refuse("'" + name + "' is listed twice");
+    // A measured material's constants come from its lab values and the
+    // cloth's geometry (measured_material.h): one family number does not say
+    // them. Its bending is a module parameter; its weights may be fitted one
+    // per element.
+    if (scene.measured_material && !pe &&
+        (name == "spring_constant" || name == "shear_constant" || name == "bend_constant" ||
+         name == "viscosity" || name == "node_mass" || name == "friction"))
+      refuse("'" + name +
+             "': the material is measured (material.measured): fit bending.rigidity, or the "
+             "weights one per element (--per-element)");
     if (name == "spring_constant" || name == "shear_constant" || name == "bend_constant") {
       // A family's springs: its own, and those of a family that follows the
       // spring constant (shear_constant < 0) unless that one is fitted itself.
@@ -263,7 +275,8 @@ void FitProblem::Impl::parse_parameters() {
         refuse("unknown parameter '" + name +
                "' (fit knows spring_constant, shear_constant, bend_constant, viscosity, node_mass, "
                "rest_length, friction, module parameters such as wind.velocity.x, wind.drag, "
-               "wind.lift, air_drag.rate, plane.friction, a material in words' inputs as "
+               "wind.lift, air_drag.rate, bending.rigidity, plane.friction, a material in words' "
+               "inputs as "
                "input.NAME, a pin_motion's keyframes as pin_motion.keyframes, and "
                "initial_velocity)");
       // Find the built module of that declaration: force modules keep
@@ -272,12 +285,11 @@ void FitProblem::Impl::parse_parameters() {
       u.id = ParameterId::module(declaration, p.parameter, p.axis);
       u.declaration = declaration;
       const std::string& type = scene.modules[static_cast<std::size_t>(declaration)].type;
-      const bool is_force = type == "wind" || type == "air_drag";
+      const bool is_force =
+          is_force_module(scene.modules[static_cast<std::size_t>(declaration)].spec);
       int index = 0;
-      for (int d = 0; d < declaration; ++d) {
-        const std::string& t = scene.modules[static_cast<std::size_t>(d)].type;
-        index += (t == "wind" || t == "air_drag") == is_force;
-      }
+      for (int d = 0; d < declaration; ++d)
+        index += is_force_module(scene.modules[static_cast<std::size_t>(d)].spec) == is_force;
       std::optional<double> value;
       if (is_force) {
         u.target = Target::force_module;
@@ -295,9 +307,10 @@ void FitProblem::Impl::parse_parameters() {
                     ? " (it uses the material's friction: fit 'friction')"
                     : ""));
       u.block = {name, size, 1, p.parameter != ModuleParameter::velocity,
-                 p.parameter == ModuleParameter::velocity ? "m/s"
-                 : p.parameter == ModuleParameter::rate   ? "1/s"
-                                                          : ""};
+                 p.parameter == ModuleParameter::velocity   ? "m/s"
+                 : p.parameter == ModuleParameter::rate     ? "1/s"
+                 : p.parameter == ModuleParameter::rigidity ? "N m"
+                                                            : ""};
       if (u.block.log_space && !(*value > 0))
         refuse("'" + name + "' is " + std::to_string(*value) +
                " in the scene: a fit in log space needs a start > 0");

@@ -13,6 +13,7 @@
 #include "core/io/text_file.h"
 #include "core/scene/element_weights.h"
 #include "core/scene/fuzzy_material.h"
+#include "core/scene/measured_material.h"
 
 namespace neurocloth {
 namespace fs = std::filesystem;
@@ -52,6 +53,8 @@ void patch_module(nlohmann::ordered_json& out, const ModuleSpec& was, const Modu
         const T& w = std::get<T>(was);
         if constexpr (std::is_same_v<T, AirDragSpec>) {
           if (n.rate != w.rate) out["rate"] = n.rate;
+        } else if constexpr (std::is_same_v<T, BendingSpec>) {
+          if (n.rigidity != w.rigidity) out["rigidity"] = *n.rigidity;
         } else if constexpr (std::is_same_v<T, WindSpec>) {
           if (n.velocity != w.velocity) out["velocity"] = vec3_json(n.velocity);
           if (n.density != w.density) out["density"] = n.density;
@@ -60,7 +63,7 @@ void patch_module(nlohmann::ordered_json& out, const ModuleSpec& was, const Modu
           if (n.skin != w.skin) out["skin"] = n.skin;
         } else if constexpr (std::is_same_v<T, PlaneSpec> || std::is_same_v<T, BoxSpec> ||
                              std::is_same_v<T, SphereSpec> || std::is_same_v<T, CapsuleSpec> ||
-                             std::is_same_v<T, MeshSpec>) {
+                             std::is_same_v<T, CylinderSpec> || std::is_same_v<T, MeshSpec>) {
           patch_contact(out, w.contact, n.contact);
         } else if constexpr (std::is_same_v<T, PinMotionSpec>) {
           if (n.keyframes != w.keyframes) {  // a fitted path: every key, as the reader reads them
@@ -152,6 +155,9 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
     for (const auto& [name, value] : words->inputs)
       inputs[name] = value;
     doc["material"] = {{"rules", rebased_path("", words->rules_path, out)}, {"inputs", inputs}};
+  } else if (original.measured_material) {
+    // As written: a fit changes no lab value but the rigidity of the bending
+    // the material implies (below); family constants are not fitted for it.
   } else {
     doc["material"] = material_json(model.scene.material);
   }
@@ -161,11 +167,24 @@ nlohmann::ordered_json fitted_scene_json(const Scene& original, const FittedMode
     nlohmann::ordered_json& obj = doc["cloth"]["mesh"]["obj"];
     obj = rebased_path(original.path, obj.get<std::string>(), out);
   }
+  // A measured bending_rigidity with no bending module in the file implies one,
+  // the scene's last: its fitted rigidity goes back into the material.
+  const std::size_t written = doc.contains("modules") ? doc["modules"].size() : 0;
+  if (model.scene.modules.size() != original.modules.size() ||
+      original.modules.size() - written > 1)
+    throw std::logic_error("fitted_scene_json: the fitted scene's modules are not the file's");
+  if (original.modules.size() == written + 1) {
+    const auto& now = std::get<BendingSpec>(model.scene.modules.back().spec);
+    const auto& was = std::get<BendingSpec>(original.modules.back().spec);
+    if (now.rigidity != was.rigidity) {
+      MeasuredMaterial m = *original.measured_material;
+      m.bending_rigidity = now.rigidity;
+      doc["material"] = {
+          {"measured", nlohmann::ordered_json::parse(measured_material_json(m).dump())}};
+    }
+  }
   if (doc.contains("modules")) {
     nlohmann::ordered_json& modules = doc["modules"];
-    if (modules.size() != original.modules.size() ||
-        model.scene.modules.size() != original.modules.size())
-      throw std::logic_error("fitted_scene_json: the fitted scene's modules are not the file's");
     for (std::size_t i = 0; i < modules.size(); ++i)
       patch_module(modules[i], original.modules[i].spec, model.scene.modules[i].spec);
   }

@@ -140,14 +140,16 @@ TEST(LearnRecovery, TheWordsOfACloth) {
     for (const std::string& w : problem.inputs_in_words(f.result.best_theta))
       std::printf("  %s\n", w.c_str());
     // Off by a fraction of each input's range (cloth.fcl: mass 0.02..1.5,
-    // elasticity 0..1, force 0..10). Measured: 1.6e-12, 3.0e-13 and 7.1e-10.
+    // elasticity 0..1, force 0..10). Measured: 2.0e-12, 4.5e-11 and 2.2e-11
+    // (1.6e-12, 3.0e-13 and 7.1e-10 before cloth.fcl's mass terms took fabric
+    // people's light and heavy: mass 0.5 is now wholly "big").
     const double off_mass = std::abs(f.values[0] - mass) / 1.48,
                  off_elasticity = std::abs(f.values[1] - elasticity) / 1.0,
                  off_force = std::abs(f.values[2] - force) / 10.0;
     std::printf("  off by %.2g, %.2g and %.2g of the ranges\n", off_mass, off_elasticity,
                 off_force);
     EXPECT_LT(off_mass, 1e-11);
-    EXPECT_LT(off_elasticity, 3e-12);
+    EXPECT_LT(off_elasticity, 6e-11);
     EXPECT_LT(off_force, 5e-9);
   }
 }
