@@ -39,12 +39,6 @@ inline Fwd operator-(const Fwd& a) {
 inline Fwd operator*(const Fwd& a, const Fwd& b) {
   return {a.v * b.v, a.d * b.v + a.v * b.d};
 }
-inline Fwd operator*(double a, const Fwd& b) {
-  return {a * b.v, a * b.d};
-}
-inline Fwd operator*(const Fwd& a, double b) {
-  return {a.v * b, a.d * b};
-}
 inline Fwd operator/(const Fwd& a, const Fwd& b) {
   return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)};
 }

@@ -30,8 +30,11 @@ struct CentredBounds {
     return true;
   }
   bool near(double bx, double by, double bz, double x, double y, double z, double reach) const {
-    return overlaps(bx, x, c.x(), e.x() + reach) & overlaps(by, y, c.y(), e.y() + reach) &
-           overlaps(bz, z, c.z(), e.z() + reach);
+    // All three tested, then combined without a branch.
+    const bool ox = overlaps(bx, x, c.x(), e.x() + reach),
+               oy = overlaps(by, y, c.y(), e.y() + reach),
+               oz = overlaps(bz, z, c.z(), e.z() + reach);
+    return ox & oy & oz;
   }
   static bool overlaps(double a, double b, double center, double half) {
     return (std::min(a, b) < center + half) & (std::max(a, b) > center - half);
