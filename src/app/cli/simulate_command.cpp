@@ -141,6 +141,10 @@ int run_simulate(const SimulateOptions& o) {
   if (!(o.seconds >= 0) || !std::isfinite(o.seconds))
     throw InputError("command line", "--seconds", "must be a finite number >= 0");
   Scene scene = sized_scene(load_scene(o.scene), o.scene, o.size);
+  // What the cloth cannot represent of a measured material (a grid without
+  // shear springs, a mesh's shear fixed by its triangles).
+  for (const std::string& note : scene.material_notes)
+    std::printf("  note: %s\n", note.c_str());
   check_output_path("--out", o.out, input_files(scene));
   std::optional<AccuracyPick> accuracy;
   if (o.accuracy) accuracy = pick_for_accuracy(o, scene);

@@ -86,6 +86,15 @@ TEST_F(Cli, SimulateReadsACantileversBendingLength) {
   EXPECT_NEAR(cant.at("bending_length").get<double>(), c, 0.0003);
   EXPECT_NEAR(cant.at("bending_rigidity").get<double>(), 2e-5, 0.1e-5);
   EXPECT_NEAR(cant.at("overhang").get<double>(), 2 * c, 1e-6);
+  // The strip has shear springs: nothing it cannot represent, so no note.
+  EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;
+  // Without them its shear stiffness is 0, and simulate says so.
+  std::string no_shear = read_text(scene);
+  no_shear.replace(no_shear.find(R"("structural", "shear")"), 21, R"("structural")");
+  const Outcome n = run(
+      {"simulate", write("no_shear.json", no_shear), "--seconds", "0.01", "--out", result_path()});
+  ASSERT_EQ(n.code, kOk) << n.err;
+  EXPECT_NE(n.out.find("note: the grid has no shear springs"), std::string::npos) << n.out;
   // A scene that is no cantilever has no reading.
   ASSERT_EQ(run({"simulate", assets_directory() + "/scenes/hanging.json", "--seconds", "0.01",
                  "--out", result_path()})
